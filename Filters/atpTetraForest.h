@@ -1,0 +1,75 @@
+// The in-memory binary forest of tetrahedra (6 roots), refined diamond by diamond.
+// Small by design: one node per tetrahedron, a few thousand triangles per leaf (paper, 5.1).
+#ifndef atpTetraForest_h
+#define atpTetraForest_h
+
+#include "atpTetra.h"
+#include "vtkATPFiltersModule.h"
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace atp
+{
+
+class VTKATPFILTERS_EXPORT TetraForest
+{
+public:
+  using NodeIndex = std::int32_t;
+  static constexpr NodeIndex None = -1;
+
+  struct Node
+  {
+    TetId Id;
+    Tetra Geometry;
+    SplitPlane Plane;
+    NodeIndex Parent = None;
+    std::array<NodeIndex, 2> Children{ { None, None } };
+
+    bool IsLeaf() const { return Children[0] == None; }
+  };
+
+  /// The six roots, as nodes 0 to 5.
+  TetraForest();
+
+  std::size_t Size() const { return Nodes.size(); }
+  const Node& operator[](NodeIndex i) const { return Nodes[std::size_t(i)]; }
+
+  /// The node of a tetrahedron, or None when it does not exist (an ancestor is a leaf).
+  NodeIndex Find(TetId id) const;
+  /// The leaf below `start` that holds p (lattice coordinates).
+  NodeIndex Descend(NodeIndex start, const double p[3]) const
+  {
+    NodeIndex n = start;
+    while (!Nodes[std::size_t(n)].IsLeaf())
+    {
+      const Node& node = Nodes[std::size_t(n)];
+      n = node.Children[node.Plane.ChildContaining(p)];
+    }
+    return n;
+  }
+  NodeIndex LeafContaining(const double p[3]) const { return Descend(RootContaining(p), p); }
+
+  /// Splits the whole diamond of the leaf `node`. Members that do not exist yet are created
+  /// first by splitting the coarser diamonds they need (recursively, parents before children),
+  /// so the leaves always form a conforming mesh. `onSplit` is called for every tetrahedron
+  /// split, in order, right after its children are created. Returns false at MaxLevel.
+  bool SplitDiamond(NodeIndex node, const std::function<void(NodeIndex)>& onSplit);
+
+  std::vector<NodeIndex> Leaves() const;
+  int Depth() const { return DeepestLevel; }
+
+private:
+  NodeIndex AddNode(TetId id, const Tetra& geometry, NodeIndex parent);
+  /// Finds the node of `id`, splitting coarser diamonds until it exists.
+  NodeIndex Materialize(TetId id, const std::function<void(NodeIndex)>& onSplit);
+
+  std::vector<Node> Nodes;
+  int DeepestLevel = 0;
+};
+
+} // namespace atp
+
+#endif

@@ -1,0 +1,104 @@
+#include "atpScratchFile.h"
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <stdexcept>
+#include <unistd.h>
+#include <vector>
+
+namespace atp
+{
+namespace
+{
+std::string DefaultDirectory()
+{
+  const char* tmp = std::getenv("TMPDIR");
+  return (tmp && *tmp) ? tmp : "/tmp";
+}
+} // namespace
+
+ScratchFile::ScratchFile(const std::string& directory)
+  : Directory(directory.empty() ? DefaultDirectory() : directory)
+{
+  std::string name = Directory + "/atp-scratch-XXXXXX";
+  std::vector<char> buffer(name.begin(), name.end());
+  buffer.push_back('\0');
+  Fd = ::mkstemp(buffer.data());
+  if (Fd < 0)
+  {
+    throw std::runtime_error(
+      "cannot create a scratch file in " + Directory + ": " + std::strerror(errno));
+  }
+  ::unlink(buffer.data());
+}
+
+ScratchFile::~ScratchFile()
+{
+  if (Fd >= 0)
+  {
+    ::close(Fd);
+  }
+}
+
+void ScratchFile::WriteAt(std::uint64_t offset, const void* data, std::size_t bytes)
+{
+  const char* p = static_cast<const char*>(data);
+  while (bytes > 0)
+  {
+    const ssize_t n = ::pwrite(Fd, p, bytes, off_t(offset));
+    if (n < 0 && errno == EINTR)
+    {
+      continue;
+    }
+    if (n <= 0)
+    {
+      throw std::runtime_error("cannot write scratch data in " + Directory + ": " +
+        (n < 0 ? std::strerror(errno) : "no space left"));
+    }
+    p += n;
+    offset += std::uint64_t(n);
+    bytes -= std::size_t(n);
+  }
+}
+
+void ScratchFile::ReadAt(std::uint64_t offset, void* data, std::size_t bytes) const
+{
+  char* p = static_cast<char*>(data);
+  while (bytes > 0)
+  {
+    const ssize_t n = ::pread(Fd, p, bytes, off_t(offset));
+    if (n < 0 && errno == EINTR)
+    {
+      continue;
+    }
+    if (n <= 0)
+    {
+      throw std::runtime_error("cannot read scratch data in " + Directory + ": " +
+        (n < 0 ? std::strerror(errno) : "unexpected end of file"));
+    }
+    p += n;
+    offset += std::uint64_t(n);
+    bytes -= std::size_t(n);
+  }
+}
+
+void ScratchFile::Resize(std::uint64_t bytes)
+{
+  if (::ftruncate(Fd, off_t(bytes)) != 0)
+  {
+    throw std::runtime_error("cannot resize scratch file in " + Directory + ": " + std::strerror(errno));
+  }
+  if (bytes > 0)
+  {
+    const int err = ::posix_fallocate(Fd, 0, off_t(bytes));
+    if (err != 0 && err != EOPNOTSUPP && err != EINVAL)
+    {
+      throw std::runtime_error(
+        "cannot reserve scratch space in " + Directory + ": " + std::strerror(err));
+    }
+  }
+}
+
+} // namespace atp

@@ -1,0 +1,41 @@
+// A temporary file for data that does not fit in memory. It is unlinked as soon as it is
+// created, so nothing is left behind however the process ends (crash, SIGKILL, full disk).
+#ifndef atpScratchFile_h
+#define atpScratchFile_h
+
+#include "vtkATPIOModule.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace atp
+{
+
+class VTKATPIO_EXPORT ScratchFile
+{
+public:
+  /// Creates the file in `directory` (empty: $TMPDIR or /tmp). Throws std::runtime_error naming
+  /// the directory when it cannot.
+  explicit ScratchFile(const std::string& directory);
+  ~ScratchFile();
+  ScratchFile(const ScratchFile&) = delete;
+  ScratchFile& operator=(const ScratchFile&) = delete;
+
+  /// Full writes and reads at an offset; a short write (disk full) or read throws
+  /// std::runtime_error with the system's reason.
+  void WriteAt(std::uint64_t offset, const void* data, std::size_t bytes);
+  void ReadAt(std::uint64_t offset, void* data, std::size_t bytes) const;
+  /// Grows or shrinks the file (for memory mapping); reserves the blocks so a full disk is
+  /// reported here rather than as SIGBUS on first touch of a mapped page.
+  void Resize(std::uint64_t bytes);
+  int Descriptor() const { return Fd; }
+
+private:
+  int Fd = -1;
+  std::string Directory;
+};
+
+} // namespace atp
+
+#endif

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package the project needs to build, test and run.
+# Safe to run again: apt-get skips what is already installed.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config libgtest-dev
+  libvtk9-dev            # VTK 9.1: modules, pipeline, OpenGL2 rendering, vtkTesting
+  libcgal-dev            # minimum enclosing balls (Min_sphere_of_spheres_d)
+  libtet1.5-dev          # TetGen: conformity checks in tests
+  libmeshoptimizer-dev   # vertex-cache order, index/vertex codecs
+  libopenmpi-dev openmpi-bin   # VTK 9.1 on Debian links MPI; distributed build
+  xvfb xauth             # headless rendering for tests
+  mricron-data           # real MRI volumes for the brain isosurface benchmark
+)
+
+if [ "$(id -u)" -ne 0 ]; then
+  echo "install-deps.sh: run as root (apt-get needs it)" >&2
+  exit 1
+fi
+export DEBIAN_FRONTEND=noninteractive
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  apt-get update -q
+  apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
