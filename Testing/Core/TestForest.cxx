@@ -1,0 +1,164 @@
+// Conformity of diamond refinement, proven by an exact face-matching check and by TetGen, and
+// the same checks rejecting cuts that break a diamond.
+#include "ConformityCheck.h"
+#include "atpTetraForest.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace atp;
+using atp::testing::FaceMatchingProblem;
+using atp::testing::TetGenProblem;
+
+namespace
+{
+std::vector<Tetra> LeafGeometry(const TetraForest& forest)
+{
+  std::vector<Tetra> tets;
+  for (const auto leaf : forest.Leaves())
+  {
+    tets.push_back(forest[leaf].Geometry);
+  }
+  return tets;
+}
+
+/// Refines random leaves (biased to a random spot so depth varies a lot across the cube).
+TetraForest RandomRefinement(unsigned seed, int splits)
+{
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> coordinate(0, LatticeSize);
+  const double focus[3] = { coordinate(rng), coordinate(rng), coordinate(rng) };
+  TetraForest forest;
+  for (int s = 0; s < splits; ++s)
+  {
+    double p[3];
+    const bool nearFocus = rng() % 2 == 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      p[k] = nearFocus ? std::min<double>(LatticeSize, std::abs(focus[k] + coordinate(rng) / 64 -
+                                                            LatticeSize / 128.0))
+                       : coordinate(rng);
+    }
+    forest.SplitDiamond(forest.LeafContaining(p), [](TetraForest::NodeIndex) {});
+  }
+  return forest;
+}
+} // namespace
+
+TEST(Forest, StartsWithSixRootsThatConform)
+{
+  TetraForest forest;
+  EXPECT_EQ(forest.Size(), 6u);
+  EXPECT_EQ(forest.Leaves().size(), 6u);
+  EXPECT_EQ(FaceMatchingProblem(LeafGeometry(forest)), "");
+  EXPECT_EQ(TetGenProblem(LeafGeometry(forest)), "");
+}
+
+TEST(Forest, RandomDiamondRefinementsConform)
+{
+  for (unsigned seed = 1; seed <= 8; ++seed)
+  {
+    const TetraForest forest = RandomRefinement(seed, 40 + 25 * int(seed));
+    const auto tets = LeafGeometry(forest);
+    EXPECT_GE(forest.Depth(), 6) << "seed " << seed;
+    EXPECT_EQ(FaceMatchingProblem(tets), "") << "seed " << seed;
+    EXPECT_EQ(TetGenProblem(tets), "") << "seed " << seed;
+  }
+}
+
+TEST(Forest, SplitsWholeDiamondsParentsFirst)
+{
+  TetraForest forest;
+  std::vector<TetraForest::NodeIndex> order;
+  const double p[3] = { 1000.5, 2000.25, 3000.125 };
+  for (int s = 0; s < 60; ++s)
+  {
+    forest.SplitDiamond(
+      forest.LeafContaining(p), [&](TetraForest::NodeIndex n) { order.push_back(n); });
+  }
+  std::vector<bool> seen(forest.Size(), false);
+  for (const auto n : order)
+  {
+    // A node is split only after its parent.
+    const auto parent = forest[n].Parent;
+    EXPECT_TRUE(parent == TetraForest::None || seen[std::size_t(parent)]);
+    seen[std::size_t(n)] = true;
+    // All of its diamond is split too.
+    for (const TetId member : DiamondMembers(forest[n].Id))
+    {
+      const auto m = forest.Find(member);
+      ASSERT_NE(m, TetraForest::None);
+      EXPECT_FALSE(forest[m].IsLeaf());
+    }
+  }
+  EXPECT_EQ(forest.Depth(), 60);
+  EXPECT_EQ(forest[forest.LeafContaining(p)].Id.Level(), 60);
+  EXPECT_FALSE(forest.SplitDiamond(forest.LeafContaining(p), [](TetraForest::NodeIndex) {}))
+    << "the deepest level cannot split";
+  EXPECT_EQ(FaceMatchingProblem(LeafGeometry(forest)), "");
+}
+
+TEST(Forest, FindAndLocateAgree)
+{
+  const TetraForest forest = RandomRefinement(11, 120);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> coordinate(0, LatticeSize);
+  for (int trial = 0; trial < 500; ++trial)
+  {
+    const double p[3] = { coordinate(rng), coordinate(rng), coordinate(rng) };
+    const auto leaf = forest.LeafContaining(p);
+    ASSERT_TRUE(forest[leaf].IsLeaf());
+    EXPECT_TRUE(forest[leaf].Geometry.Contains(p));
+    EXPECT_EQ(forest.Find(forest[leaf].Id), leaf);
+    EXPECT_EQ(Locate(p, forest[leaf].Id.Level()), forest[leaf].Id);
+  }
+}
+
+// The checks must be able to fail: break a diamond on purpose.
+TEST(ConformityCheck, RejectsOneMemberOfADiamondSplitAlone)
+{
+  const TetraForest forest = RandomRefinement(3, 60);
+  std::vector<Tetra> tets;
+  bool broken = false;
+  for (const auto leaf : forest.Leaves())
+  {
+    const Tetra& t = forest[leaf].Geometry;
+    if (!broken && DiamondMembers(forest[leaf].Id).size() > 1)
+    {
+      const auto children = t.Children();
+      tets.insert(tets.end(), children.begin(), children.end());
+      broken = true;
+      continue;
+    }
+    tets.push_back(t);
+  }
+  ASSERT_TRUE(broken);
+  EXPECT_NE(FaceMatchingProblem(tets), "");
+  EXPECT_NE(TetGenProblem(tets), "");
+}
+
+TEST(ConformityCheck, RejectsAChildSplitWithoutItsDiamond)
+{
+  // Split a whole diamond properly, then one of the new children alone.
+  TetraForest forest;
+  forest.SplitDiamond(0, [](TetraForest::NodeIndex) {});
+  forest.SplitDiamond(forest.LeafContaining(std::array<double, 3>{ 9e5, 1e5, 2e5 }.data()),
+    [](TetraForest::NodeIndex) {});
+  auto tets = LeafGeometry(forest);
+  ASSERT_EQ(FaceMatchingProblem(tets), "");
+  ASSERT_EQ(TetGenProblem(tets), "");
+  const Tetra victim = tets.back();
+  tets.pop_back();
+  const auto children = victim.Children();
+  tets.insert(tets.end(), children.begin(), children.end());
+  EXPECT_NE(FaceMatchingProblem(tets), "");
+  EXPECT_NE(TetGenProblem(tets), "");
+}
+
+TEST(ConformityCheck, RejectsAMissingTetrahedron)
+{
+  auto tets = LeafGeometry(RandomRefinement(4, 30));
+  tets.erase(tets.begin() + 3);
+  EXPECT_NE(FaceMatchingProblem(tets), "");
+}
