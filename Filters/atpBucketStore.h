@@ -1,0 +1,82 @@
+// Triangle buckets kept on disk behind a fixed pool of in-memory pages, so partitioning any
+// number of triangles needs the same memory (paper 5.1: "triangle buckets are stored in
+// secondary memory"). Pages of deleted buckets are reused, so the scratch file stays about the
+// size of the live triangles.
+#ifndef atpBucketStore_h
+#define atpBucketStore_h
+
+#include "atpScratchFile.h"
+#include "atpTriangleSource.h"
+#include "vtkATPFiltersModule.h"
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace atp
+{
+
+struct BucketStoreStats
+{
+  std::uint64_t BytesWritten = 0; ///< page write-backs to the scratch file
+  std::uint64_t BytesRead = 0;    ///< page reads from the scratch file
+  std::uint64_t PeakScratchBytes = 0;
+};
+
+class VTKATPFILTERS_EXPORT BucketStore
+{
+public:
+  using BucketIndex = std::uint32_t;
+  static constexpr std::size_t PageRecords = 256;
+
+  BucketStore(const std::string& scratchDirectory, std::size_t memoryBudgetBytes);
+
+  void Append(BucketIndex bucket, const SoupTriangle& triangle);
+  std::uint64_t Count(BucketIndex bucket) const
+  {
+    return bucket < Buckets.size() ? Buckets[bucket].Count : 0;
+  }
+  /// Appends the bucket's triangles to `out`, in insertion order.
+  void Read(BucketIndex bucket, std::vector<SoupTriangle>& out) const;
+  /// Empties the bucket and recycles its pages.
+  void Clear(BucketIndex bucket);
+
+  const BucketStoreStats& Stats() const { return Counters; }
+  std::size_t PoolPages() const { return FramePage.size(); }
+
+private:
+  using PageIndex = std::uint32_t;
+  static constexpr std::int32_t NotResident = -1;
+  static constexpr std::size_t PageBytes = PageRecords * sizeof(SoupTriangle);
+
+  struct Bucket
+  {
+    std::vector<PageIndex> Pages;
+    std::uint64_t Count = 0;
+  };
+
+  PageIndex NewPage();
+  /// Frame holding `page`, reading it back from disk when `load` and it was evicted.
+  std::size_t Resident(PageIndex page, bool load);
+  std::size_t FreeFrame();
+  SoupTriangle* FrameData(std::size_t frame) { return &Pool[frame * PageRecords]; }
+
+  ScratchFile Disk;
+  std::vector<Bucket> Buckets;
+  // Default-initialized: pages of the pool cost memory only once they are used.
+  std::unique_ptr<SoupTriangle[]> Pool;
+  // Per frame: the page it holds (or none), whether it changed since loaded, clock bit.
+  std::vector<std::int64_t> FramePage;
+  std::vector<char> FrameDirty, FrameReferenced;
+  std::vector<std::size_t> FreeFrames;
+  std::size_t ClockHand = 0;
+  // Per page: its frame, or NotResident (then its content, if any, is on disk at its slot).
+  std::vector<std::int32_t> PageFrame;
+  std::vector<char> PageOnDisk;
+  std::vector<PageIndex> FreePages;
+  mutable BucketStoreStats Counters; // reads count too
+};
+
+} // namespace atp
+
+#endif

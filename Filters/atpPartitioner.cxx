@@ -1,0 +1,82 @@
+#include "atpPartitioner.h"
+
+#include <algorithm>
+
+namespace atp
+{
+
+Partitioner::Partitioner(const Box& bounds, const PartitionOptions& options)
+  : Options(options)
+  , Lattice(bounds.Min.data(), bounds.Max.data())
+  , Buckets(options.ScratchDirectory, options.BucketMemoryBytes)
+{
+  Options.LeafCapacity = std::max<std::uint32_t>(1, Options.LeafCapacity);
+}
+
+void Partitioner::Centroid(const SoupTriangle& t, double out[3]) const
+{
+  const float c[3] = { float((double(t.V[0][0]) + t.V[1][0] + t.V[2][0]) / 3),
+    float((double(t.V[0][1]) + t.V[1][1] + t.V[2][1]) / 3),
+    float((double(t.V[0][2]) + t.V[1][2] + t.V[2][2]) / 3) };
+  Lattice.ToLattice(c, out);
+}
+
+void Partitioner::Redistribute(TetraForest::NodeIndex splitNode)
+{
+  ++Splits;
+  const auto bucket = std::uint32_t(splitNode);
+  if (Buckets.Count(bucket) == 0)
+  {
+    return;
+  }
+  Moving.clear();
+  Buckets.Read(bucket, Moving);
+  Buckets.Clear(bucket);
+  const TetraForest::Node& node = Tetrahedra[splitNode];
+  for (const SoupTriangle& t : Moving)
+  {
+    double p[3];
+    Centroid(t, p);
+    Buckets.Append(std::uint32_t(node.Children[node.Plane.ChildContaining(p)]), t);
+  }
+}
+
+void Partitioner::Insert(const SoupTriangle* triangles, std::size_t count)
+{
+  const auto redistribute = [this](TetraForest::NodeIndex n) { Redistribute(n); };
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    double p[3];
+    Centroid(triangles[i], p);
+    TetraForest::NodeIndex leaf = Tetrahedra.LeafContaining(p);
+    Buckets.Append(std::uint32_t(leaf), triangles[i]);
+    ++Inserted;
+    // Only the leaf that just grew can exceed the capacity; its children may too (all
+    // triangles on one side), hence the loop.
+    while (Buckets.Count(std::uint32_t(leaf)) > Options.LeafCapacity &&
+      Tetrahedra.SplitDiamond(leaf, redistribute))
+    {
+      leaf = Tetrahedra.Descend(leaf, p);
+    }
+  }
+}
+
+PartitionStats Partitioner::Stats() const
+{
+  PartitionStats s;
+  s.Triangles = Inserted;
+  s.TetrahedraSplit = Splits;
+  s.Depth = Tetrahedra.Depth();
+  s.Buckets = Buckets.Stats();
+  for (const auto leaf : Tetrahedra.Leaves())
+  {
+    const std::uint64_t n = TriangleCount(leaf);
+    ++s.Leaves;
+    s.NonEmptyLeaves += n > 0;
+    s.LargestLeaf = std::max(s.LargestLeaf, n);
+    s.OverfullLeaves += n > Options.LeafCapacity;
+  }
+  return s;
+}
+
+} // namespace atp

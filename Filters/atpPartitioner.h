@@ -1,0 +1,77 @@
+// Out-of-core mesh partitioning (paper 5.1): every triangle goes to the leaf tetrahedron holding
+// its centroid; a leaf holding more than the capacity splits with its whole diamond and its
+// triangles move to the children. The forest stays in memory (small), the buckets on disk.
+#ifndef atpPartitioner_h
+#define atpPartitioner_h
+
+#include "atpBucketStore.h"
+#include "atpTetraForest.h"
+#include "atpTriangleSource.h"
+#include "vtkATPFiltersModule.h"
+
+#include <string>
+#include <vector>
+
+namespace atp
+{
+
+struct PartitionOptions
+{
+  std::uint32_t LeafCapacity = 4000;
+  /// Memory for in-memory bucket pages; the rest of the buckets live in the scratch file.
+  std::size_t BucketMemoryBytes = std::size_t(256) << 20;
+  std::string ScratchDirectory; ///< empty: $TMPDIR or /tmp
+};
+
+struct PartitionStats
+{
+  std::uint64_t Triangles = 0;
+  std::uint64_t TetrahedraSplit = 0;
+  std::uint64_t Leaves = 0;
+  std::uint64_t NonEmptyLeaves = 0;
+  std::uint64_t LargestLeaf = 0;
+  /// Leaves at MaxLevel that still hold more than the capacity (many triangles sharing one
+  /// centroid); they are kept whole rather than failing the build.
+  std::uint64_t OverfullLeaves = 0;
+  int Depth = 0;
+  BucketStoreStats Buckets;
+};
+
+class VTKATPFILTERS_EXPORT Partitioner
+{
+public:
+  Partitioner(const Box& bounds, const PartitionOptions& options);
+
+  void Insert(const SoupTriangle* triangles, std::size_t count);
+
+  const TetraForest& Forest() const { return Tetrahedra; }
+  const LatticeFrame& Frame() const { return Lattice; }
+  std::uint64_t TriangleCount(TetraForest::NodeIndex leaf) const
+  {
+    return Buckets.Count(std::uint32_t(leaf));
+  }
+  /// Appends the triangles of `leaf` to `out`.
+  void ReadLeaf(TetraForest::NodeIndex leaf, std::vector<SoupTriangle>& out) const
+  {
+    Buckets.Read(std::uint32_t(leaf), out);
+  }
+  PartitionStats Stats() const;
+
+  /// The triangle's centroid in lattice coordinates: the one point that decides its leaf.
+  void Centroid(const SoupTriangle& t, double out[3]) const;
+
+private:
+  void Redistribute(TetraForest::NodeIndex splitNode);
+
+  PartitionOptions Options;
+  LatticeFrame Lattice;
+  TetraForest Tetrahedra;
+  BucketStore Buckets;
+  std::vector<SoupTriangle> Moving; // reused buffer for the triangles of a split leaf
+  std::uint64_t Inserted = 0;
+  std::uint64_t Splits = 0;
+};
+
+} // namespace atp
+
+#endif

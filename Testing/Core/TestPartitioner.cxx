@@ -1,0 +1,188 @@
+// Out-of-core partitioning: bucket pages on disk, leaf capacity, conformity, nothing lost.
+#include "ConformityCheck.h"
+#include "atpPartitioner.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <map>
+#include <random>
+
+using namespace atp;
+
+namespace
+{
+SoupTriangle MakeTriangle(float x, float y, float z, float size, std::uint8_t flags = 0)
+{
+  SoupTriangle t{};
+  const float corners[3][3] = { { x, y, z }, { x + size, y, z }, { x, y + size, z + size / 2 } };
+  std::memcpy(t.V, corners, sizeof(corners));
+  t.BoundaryEdges = flags;
+  return t;
+}
+
+bool SameTriangle(const SoupTriangle& a, const SoupTriangle& b)
+{
+  return std::memcmp(a.V, b.V, sizeof(a.V)) == 0 && a.BoundaryEdges == b.BoundaryEdges;
+}
+
+std::vector<SoupTriangle> RandomSoup(unsigned seed, std::size_t n)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-5, 5);
+  std::vector<SoupTriangle> soup;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    // Clustered on a sphere-like shell, as surfaces are: depth varies across the cube.
+    float p[3] = { u(rng), u(rng), u(rng) };
+    const float r = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) + 1e-3f;
+    for (float& c : p)
+    {
+      c = c / r * 4;
+    }
+    soup.push_back(MakeTriangle(p[0], p[1], p[2], 0.01f, std::uint8_t(i % 8)));
+  }
+  return soup;
+}
+
+Box BoxOf(const std::vector<SoupTriangle>& soup)
+{
+  Box box;
+  for (const auto& t : soup)
+  {
+    for (const auto& v : t.V)
+    {
+      box.Add(v);
+    }
+  }
+  return box;
+}
+} // namespace
+
+TEST(BucketStore, KeepsEveryTriangleThroughEvictionAndReuse)
+{
+  // Eight frames for hundreds of buckets: almost every append evicts a page to disk.
+  BucketStore store("", 1);
+  ASSERT_EQ(store.PoolPages(), 8u);
+  std::map<std::uint32_t, std::vector<SoupTriangle>> reference;
+  std::mt19937 rng(7);
+  for (int i = 0; i < 60000; ++i)
+  {
+    const std::uint32_t bucket = rng() % 300;
+    const SoupTriangle t = MakeTriangle(float(i), float(bucket), 0, 1, std::uint8_t(i & 7));
+    store.Append(bucket, t);
+    reference[bucket].push_back(t);
+    if (i % 5000 == 4999)
+    {
+      // Empty some buckets so pages get recycled.
+      const std::uint32_t victim = rng() % 300;
+      store.Clear(victim);
+      reference[victim].clear();
+    }
+  }
+  std::uint64_t live = 0;
+  for (const auto& [bucket, expected] : reference)
+  {
+    std::vector<SoupTriangle> got;
+    store.Read(bucket, got);
+    ASSERT_EQ(got.size(), expected.size()) << "bucket " << bucket;
+    ASSERT_EQ(store.Count(bucket), expected.size());
+    for (std::size_t i = 0; i < got.size(); ++i)
+    {
+      ASSERT_TRUE(SameTriangle(got[i], expected[i])) << "bucket " << bucket << " record " << i;
+    }
+    live += expected.size();
+  }
+  EXPECT_GT(store.Stats().BytesWritten, 0u);
+  EXPECT_GT(store.Stats().BytesRead, 0u);
+  // Recycled pages keep the scratch file near the live data (one partial page per bucket).
+  const std::uint64_t pageBytes = BucketStore::PageRecords * sizeof(SoupTriangle);
+  EXPECT_LE(store.Stats().PeakScratchBytes, live * sizeof(SoupTriangle) + 2 * 300 * pageBytes);
+}
+
+TEST(Partitioner, RespectsCapacityLosesNothingAndConforms)
+{
+  for (const std::size_t memory : { std::size_t(1), std::size_t(64) << 20 })
+  {
+    const auto soup = RandomSoup(1, 50000);
+    PartitionOptions options;
+    options.LeafCapacity = 500;
+    options.BucketMemoryBytes = memory; // 1 byte: the smallest pool, buckets live on disk
+    Partitioner partitioner(BoxOf(soup), options);
+    for (std::size_t i = 0; i < soup.size(); i += 1000)
+    {
+      partitioner.Insert(&soup[i], std::min<std::size_t>(1000, soup.size() - i));
+    }
+    const PartitionStats stats = partitioner.Stats();
+    EXPECT_EQ(stats.Triangles, soup.size());
+    EXPECT_LE(stats.LargestLeaf, 500u);
+    EXPECT_EQ(stats.OverfullLeaves, 0u);
+    EXPECT_GE(stats.Depth, 6);
+
+    const TetraForest& forest = partitioner.Forest();
+    std::vector<SoupTriangle> all;
+    std::vector<Tetra> leaves;
+    for (const auto leaf : forest.Leaves())
+    {
+      leaves.push_back(forest[leaf].Geometry);
+      std::vector<SoupTriangle> bucket;
+      partitioner.ReadLeaf(leaf, bucket);
+      for (const auto& t : bucket)
+      {
+        double c[3];
+        partitioner.Centroid(t, c);
+        ASSERT_EQ(forest.LeafContaining(c), leaf) << "triangle stored in the wrong leaf";
+        ASSERT_TRUE(forest[leaf].Geometry.Contains(c));
+      }
+      all.insert(all.end(), bucket.begin(), bucket.end());
+    }
+    EXPECT_EQ(atp::testing::FaceMatchingProblem(leaves), "");
+    // The same triangles, flags included.
+    auto order = [](const SoupTriangle& a, const SoupTriangle& b) {
+      return std::memcmp(&a, &b, sizeof(SoupTriangle)) < 0;
+    };
+    auto expected = soup;
+    std::sort(expected.begin(), expected.end(), order);
+    std::sort(all.begin(), all.end(), order);
+    ASSERT_EQ(all.size(), expected.size());
+    for (std::size_t i = 0; i < all.size(); ++i)
+    {
+      ASSERT_TRUE(SameTriangle(all[i], expected[i]));
+    }
+  }
+}
+
+TEST(Partitioner, TrianglesSharingOneCentroidStopAtTheDeepestLevel)
+{
+  std::vector<SoupTriangle> soup(300, MakeTriangle(1, 2, 3, 0.5f));
+  soup.push_back(MakeTriangle(-4, 0, 0, 0.5f)); // sets a non-trivial box
+  PartitionOptions options;
+  options.LeafCapacity = 100;
+  Partitioner partitioner(BoxOf(soup), options);
+  partitioner.Insert(soup.data(), soup.size());
+  const PartitionStats stats = partitioner.Stats();
+  EXPECT_EQ(stats.Depth, MaxLevel);
+  EXPECT_EQ(stats.OverfullLeaves, 1u);
+  EXPECT_EQ(stats.LargestLeaf, 300u);
+}
+
+TEST(Partitioner, IsDeterministic)
+{
+  const auto soup = RandomSoup(2, 20000);
+  PartitionOptions options;
+  options.LeafCapacity = 300;
+  Partitioner a(BoxOf(soup), options), b(BoxOf(soup), options);
+  a.Insert(soup.data(), soup.size());
+  for (const auto& t : soup)
+  {
+    b.Insert(&t, 1); // batch size must not matter
+  }
+  ASSERT_EQ(a.Forest().Size(), b.Forest().Size());
+  for (std::size_t i = 0; i < a.Forest().Size(); ++i)
+  {
+    const auto n = TetraForest::NodeIndex(i);
+    ASSERT_EQ(a.Forest()[n].Id, b.Forest()[n].Id);
+    ASSERT_EQ(a.TriangleCount(n), b.TriangleCount(n));
+  }
+}
