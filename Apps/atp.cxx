@@ -1,4 +1,189 @@
-int main()
+// atp: the command line of Adaptive TetraPuzzles for VTK.
+#include "atpCommandLine.h"
+#include "atpPartitioner.h"
+#include "atpProgressReport.h"
+#include "atpSurfaceGenerator.h"
+#include "atpTriangleSource.h"
+#include "vtkATPBuilder.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkNew.h"
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <sys/resource.h>
+
+namespace
 {
+using atp::CommandLine;
+using atp::FormatCount;
+using atp::FormatDuration;
+
+double PeakResidentMiB()
+{
+  rusage usage{};
+  ::getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_maxrss) / 1024.0; // Linux reports KiB
+}
+
+std::vector<std::string> Rest(int argc, char** argv)
+{
+  return std::vector<std::string>(argv + 2, argv + argc);
+}
+
+int Build(int argc, char** argv)
+{
+  CommandLine cl("build",
+    "Builds a multiresolution model from a triangle mesh (PLY, OBJ, STL, VTP), streaming it\n"
+    "from disk. This version runs the partitioning phase: triangles are sorted into a forest\n"
+    "of tetrahedra (6 roots, longest-edge bisection, diamonds split whole) with buckets on\n"
+    "disk, and the figures are reported. Writing the .atp model comes with the simplification\n"
+    "phase; until then OUT is not written.");
+  cl.AddPositional("INPUT", "mesh file: .ply (ASCII or binary), .obj, .stl, .vtp");
+  cl.AddOption("output", "o", "OUT.atp", "model file to write");
+  cl.AddOption("leaf-capacity", "", "N", "most triangles in a leaf tetrahedron", "4000");
+  cl.AddOption("bucket-memory", "", "MiB", "memory for in-memory triangle buckets", "256");
+  cl.AddOption("scratch", "", "DIR", "directory for temporary files", "$TMPDIR or /tmp");
+  cl.AddFlag("quiet", "no progress output, only the summary");
+  if (!cl.Parse(Rest(argc, argv)))
+  {
+    return 0;
+  }
+  if (!cl.Has("output"))
+  {
+    throw atp::UsageError("missing -o OUT.atp (see atp build --help)");
+  }
+
+  vtkNew<vtkATPBuilder> builder;
+  builder->SetFileName(cl.Positional(0).c_str());
+  builder->SetLeafCapacity(int(cl.GetInteger("leaf-capacity", 1, 1 << 30)));
+  builder->SetBucketMemoryMiB(int(cl.GetInteger("bucket-memory", 1, 1 << 20)));
+  if (cl.Has("scratch"))
+  {
+    builder->SetScratchDirectory(cl.Get("scratch").c_str());
+  }
+
+  // Errors are reported once, by us, not also by VTK's output window.
+  vtkNew<vtkCallbackCommand> swallowErrors;
+  builder->AddObserver(vtkCommand::ErrorEvent, swallowErrors);
+  atp::ProgressReport progress("partitioning", 0, "triangles");
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetClientData(&progress);
+  onProgress->SetCallback([](vtkObject* caller, unsigned long, void* client, void* call) {
+    auto* report = static_cast<atp::ProgressReport*>(client);
+    report->SetTotal(static_cast<vtkATPBuilder*>(caller)->GetExpectedTriangles());
+    report->Update(*static_cast<double*>(call));
+  });
+  if (!cl.Has("quiet"))
+  {
+    builder->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  }
+
+  const auto start = std::chrono::steady_clock::now();
+  const int ok = builder->Build();
+  progress.Finish();
+  if (!ok)
+  {
+    std::fprintf(stderr, "atp build: error: %s\n", builder->GetErrorMessage());
+    return 1;
+  }
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const atp::InputStats& in = builder->GetInputStats();
+  const atp::PartitionStats& p = builder->GetPartitionStats();
+  std::printf("input: %s vertices, %s faces, %s triangles (%llu degenerate dropped, %llu "
+              "boundary edges)\n",
+    FormatCount(double(in.VerticesRead)).c_str(), FormatCount(double(in.FacesRead)).c_str(),
+    FormatCount(double(in.TrianglesEmitted)).c_str(),
+    static_cast<unsigned long long>(in.DegenerateDropped),
+    static_cast<unsigned long long>(in.BoundaryEdges));
+  std::printf("partition: %llu leaves (%llu holding triangles, largest %llu), depth %d, %llu "
+              "tetrahedra split, %llu overfull at the deepest level\n",
+    static_cast<unsigned long long>(p.Leaves), static_cast<unsigned long long>(p.NonEmptyLeaves),
+    static_cast<unsigned long long>(p.LargestLeaf), p.Depth,
+    static_cast<unsigned long long>(p.TetrahedraSplit),
+    static_cast<unsigned long long>(p.OverfullLeaves));
+  std::printf("buckets: %.1f MiB written to scratch, %.1f MiB read back, scratch peak %.1f MiB\n",
+    double(p.Buckets.BytesWritten) / (1 << 20), double(p.Buckets.BytesRead) / (1 << 20),
+    double(p.Buckets.PeakScratchBytes) / (1 << 20));
+  std::printf("done: %s triangles in %s (%.2fs), %s triangles/s, peak memory %.0f MiB\n",
+    FormatCount(double(p.Triangles)).c_str(), FormatDuration(seconds).c_str(), seconds,
+    FormatCount(double(p.Triangles) / std::max(seconds, 1e-9)).c_str(), PeakResidentMiB());
+  std::printf("note: %s not written: writing models arrives with the simplification phase\n",
+    cl.Get("output").c_str());
   return 0;
+}
+
+int Generate(int argc, char** argv)
+{
+  CommandLine cl("generate",
+    "Writes a large test surface (a torus with bumps at several scales) as binary PLY,\n"
+    "streaming, so inputs of any size can be made for benchmarks.");
+  cl.AddOption("output", "o", "OUT.ply", "PLY file to write");
+  cl.AddOption("triangles", "n", "N", "approximate number of triangles", "1000000");
+  cl.AddOption("holes", "", "K", "rectangular holes to punch, giving mesh borders", "0");
+  if (!cl.Parse(Rest(argc, argv)))
+  {
+    return 0;
+  }
+  if (!cl.Has("output"))
+  {
+    throw atp::UsageError("missing -o OUT.ply (see atp generate --help)");
+  }
+  atp::SurfaceOptions options;
+  options.Triangles = std::uint64_t(cl.GetInteger("triangles", 8, 4000000000LL));
+  options.Holes = int(cl.GetInteger("holes", 0, 64));
+  const auto start = std::chrono::steady_clock::now();
+  const std::uint64_t written = atp::WriteBumpyTorusPly(cl.Get("output"), options);
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("wrote %s: %llu triangles in %.2fs\n", cl.Get("output").c_str(),
+    static_cast<unsigned long long>(written), seconds);
+  return 0;
+}
+
+void PrintHelp()
+{
+  std::cout << "usage: atp COMMAND [arguments] [options]\n\n"
+               "Adaptive TetraPuzzles for VTK: multiresolution models of huge triangle meshes.\n\n"
+               "commands:\n"
+               "  build      build a model from a mesh file (partitioning phase for now)\n"
+               "  generate   write a large test surface as binary PLY\n\n"
+               "Run 'atp COMMAND --help' for the options of a command.\n";
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")
+  {
+    PrintHelp();
+    return argc < 2 ? 2 : 0;
+  }
+  const std::string command = argv[1];
+  try
+  {
+    if (command == "build")
+    {
+      return Build(argc, argv);
+    }
+    if (command == "generate")
+    {
+      return Generate(argc, argv);
+    }
+    std::fprintf(stderr, "atp: unknown command '%s' (see atp --help)\n", command.c_str());
+    return 2;
+  }
+  catch (const atp::UsageError& e)
+  {
+    std::fprintf(stderr, "atp %s: %s\n", command.c_str(), e.what());
+    return 2;
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "atp %s: error: %s\n", command.c_str(), e.what());
+    return 1;
+  }
 }

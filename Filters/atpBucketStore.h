@@ -27,7 +27,8 @@ class VTKATPFILTERS_EXPORT BucketStore
 {
 public:
   using BucketIndex = std::uint32_t;
-  static constexpr std::size_t PageRecords = 256;
+  // 512 records = 20 KiB = 5 file-system blocks: writes never touch a block partially.
+  static constexpr std::size_t PageRecords = 512;
 
   BucketStore(const std::string& scratchDirectory, std::size_t memoryBudgetBytes);
 

@@ -44,19 +44,31 @@ void Partitioner::Redistribute(TetraForest::NodeIndex splitNode)
 void Partitioner::Insert(const SoupTriangle* triangles, std::size_t count)
 {
   const auto redistribute = [this](TetraForest::NodeIndex n) { Redistribute(n); };
-  for (std::size_t i = 0; i < count; ++i)
+  constexpr std::size_t Group = 256;
+  double centroids[Group][3];
+  TetraForest::NodeIndex leaves[Group];
+  for (std::size_t first = 0; first < count; first += Group)
   {
-    double p[3];
-    Centroid(triangles[i], p);
-    TetraForest::NodeIndex leaf = Tetrahedra.LeafContaining(p);
-    Buckets.Append(std::uint32_t(leaf), triangles[i]);
-    ++Inserted;
-    // Only the leaf that just grew can exceed the capacity; its children may too (all
-    // triangles on one side), hence the loop.
-    while (Buckets.Count(std::uint32_t(leaf)) > Options.LeafCapacity &&
-      Tetrahedra.SplitDiamond(leaf, redistribute))
+    const std::size_t n = std::min(Group, count - first);
+    for (std::size_t i = 0; i < n; ++i)
     {
-      leaf = Tetrahedra.Descend(leaf, p);
+      Centroid(triangles[first + i], centroids[i]);
+    }
+    // Located against the forest as it stands; a leaf split by an earlier triangle of the
+    // group is finished by Descend below, so the result is the same as one at a time.
+    Tetrahedra.LeavesContaining(centroids, leaves, n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      TetraForest::NodeIndex leaf = Tetrahedra.Descend(leaves[i], centroids[i]);
+      Buckets.Append(std::uint32_t(leaf), triangles[first + i]);
+      ++Inserted;
+      // Only the leaf that just grew can exceed the capacity; its children may too (all
+      // triangles on one side), hence the loop.
+      while (Buckets.Count(std::uint32_t(leaf)) > Options.LeafCapacity &&
+        Tetrahedra.SplitDiamond(leaf, redistribute))
+      {
+        leaf = Tetrahedra.Descend(leaf, centroids[i]);
+      }
     }
   }
 }

@@ -1,5 +1,6 @@
 #include "atpTetraForest.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace atp
@@ -90,6 +91,39 @@ bool TetraForest::SplitDiamond(NodeIndex node, const std::function<void(NodeInde
     onSplit(m);
   }
   return true;
+}
+
+void TetraForest::LeavesContaining(
+  const double (*points)[3], NodeIndex* leaves, std::size_t count) const
+{
+  constexpr std::size_t Lanes = 8;
+  std::size_t first = 0;
+  for (; first + Lanes <= count; first += Lanes)
+  {
+    NodeIndex n[Lanes];
+    for (std::size_t l = 0; l < Lanes; ++l)
+    {
+      n[l] = RootContaining(points[first + l]);
+    }
+    for (bool descending = true; descending;)
+    {
+      descending = false;
+      for (std::size_t l = 0; l < Lanes; ++l)
+      {
+        const Node& node = Nodes[std::size_t(n[l])];
+        if (!node.IsLeaf())
+        {
+          n[l] = node.Children[node.Plane.ChildContaining(points[first + l])];
+          descending = true;
+        }
+      }
+    }
+    std::copy(n, n + Lanes, leaves + first);
+  }
+  for (; first < count; ++first)
+  {
+    leaves[first] = LeafContaining(points[first]);
+  }
 }
 
 std::vector<TetraForest::NodeIndex> TetraForest::Leaves() const

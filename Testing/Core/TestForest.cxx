@@ -113,6 +113,19 @@ TEST(Forest, FindAndLocateAgree)
     EXPECT_EQ(forest.Find(forest[leaf].Id), leaf);
     EXPECT_EQ(Locate(p, forest[leaf].Id.Level()), forest[leaf].Id);
   }
+  // The interleaved batch descent agrees with one descent at a time (odd count: a tail too).
+  std::vector<std::array<double, 3>> points(1001);
+  for (auto& p : points)
+  {
+    p = { coordinate(rng), coordinate(rng), coordinate(rng) };
+  }
+  std::vector<TetraForest::NodeIndex> leaves(points.size());
+  forest.LeavesContaining(
+    reinterpret_cast<const double(*)[3]>(points.data()), leaves.data(), points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    EXPECT_EQ(leaves[i], forest.LeafContaining(points[i].data()));
+  }
 }
 
 // The checks must be able to fail: break a diamond on purpose.

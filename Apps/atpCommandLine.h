@@ -1,0 +1,60 @@
+// A small option parser for the atp subcommands: --name VALUE, --flag, positional arguments,
+// and a generated --help text, so every subcommand documents every option the same way.
+#ifndef atpCommandLine_h
+#define atpCommandLine_h
+
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace atp
+{
+
+/// A mistake in the command line: the message says which option and what is wrong.
+class UsageError : public std::runtime_error
+{
+public:
+  using std::runtime_error::runtime_error;
+};
+
+class CommandLine
+{
+public:
+  CommandLine(std::string command, std::string summary);
+
+  /// An option taking a value; `fallback` empty means the option has no default.
+  void AddOption(const std::string& longName, const std::string& shortName,
+    const std::string& valueName, const std::string& help, const std::string& fallback = "");
+  void AddFlag(const std::string& longName, const std::string& help);
+  void AddPositional(const std::string& name, const std::string& help);
+
+  /// Parses arguments (after the subcommand). Returns false when --help was asked (the help
+  /// is printed). Throws UsageError.
+  bool Parse(const std::vector<std::string>& arguments);
+
+  std::string Help() const;
+  bool Has(const std::string& longName) const;
+  std::string Get(const std::string& longName) const;
+  /// The option's value as an integer in [low, high]; throws UsageError otherwise.
+  long long GetInteger(const std::string& longName, long long low, long long high) const;
+  const std::string& Positional(std::size_t i) const { return Positionals.at(i); }
+
+private:
+  struct Option
+  {
+    std::string Long, Short, ValueName, Help, Fallback;
+    bool IsFlag = false;
+  };
+  const Option* FindOption(const std::string& name) const;
+
+  std::string Command, Summary;
+  std::vector<Option> Options;
+  std::vector<std::pair<std::string, std::string>> PositionalHelp;
+  std::vector<std::string> Positionals;
+  std::map<std::string, std::string> Values;
+};
+
+}
+
+#endif

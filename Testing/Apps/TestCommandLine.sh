@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# The atp command line as a user meets it: help texts, a build on the sample mesh, and one
+# clear line plus a non-zero exit code for each mistake a user can make.
+#   TestCommandLine.sh ATP_BINARY DATA_DIR
+set -u
+atp=$1
+data=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+passed=0
+
+# expect CODE PATTERN -- command...: exit code CODE and output (stdout+stderr) matching PATTERN.
+expect() {
+  local code=$1 pattern=$2
+  shift 3
+  local out status
+  out=$("$@" 2>&1)
+  status=$?
+  if [ "$status" -ne "$code" ] || ! grep -qE -- "$pattern" <<<"$out"; then
+    echo "FAIL: $* -> exit $status (want $code), output:"
+    sed 's/^/    /' <<<"$out" | head -20
+    echo "    (wanted /$pattern/)"
+    failures=$((failures + 1))
+  else
+    passed=$((passed + 1))
+  fi
+}
+
+expect 0 "commands:" -- "$atp" --help
+expect 2 "usage: atp" -- "$atp"
+expect 0 "--leaf-capacity N" -- "$atp" build --help
+expect 0 "--triangles N" -- "$atp" generate --help
+expect 2 "unknown command 'frobnicate'" -- "$atp" frobnicate
+expect 2 "unknown option --bogus" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/x.atp" --bogus
+expect 2 "missing -o" -- "$atp" build "$data/bumpy-torus.ply"
+expect 2 "leaf-capacity must be a whole number" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/x.atp" --leaf-capacity lots
+expect 2 "expected 1 argument" -- "$atp" build -o "$work/x.atp"
+
+# The main job on the bundled sample.
+expect 0 "done: .* triangles/s, peak memory" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/x.atp" --quiet
+expect 0 "partition: [0-9]+ leaves" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/x.atp" --leaf-capacity 500 --bucket-memory 1
+
+# Bad input: one line naming the file and the problem.
+expect 1 "missing.ply" -- "$atp" build "$work/missing.ply" -o "$work/x.atp"
+printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n' > "$work/truncated.ply"
+expect 1 "truncated.ply" -- "$atp" build "$work/truncated.ply" -o "$work/x.atp"
+printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n' > "$work/nan.ply"
+expect 1 "nan.ply.*(non-finite|nan)" -- "$atp" build "$work/nan.ply" -o "$work/x.atp"
+printf 'ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n' > "$work/empty.ply"
+expect 1 "empty.ply.*empty" -- "$atp" build "$work/empty.ply" -o "$work/x.atp"
+expect 1 "scratch" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/x.atp" --scratch "$work/no/such/dir"
+
+# The generator writes a mesh the builder reads back, and never a partial file.
+expect 0 "wrote .*g.ply: [0-9]+ triangles" -- "$atp" generate -n 5000 --holes 2 -o "$work/g.ply"
+expect 0 "boundary edges" -- "$atp" build "$work/g.ply" -o "$work/g.atp" --quiet
+expect 1 "cannot create" -- "$atp" generate -n 5000 -o "$work/no/such/dir/g.ply"
+[ ! -e "$work/x.atp" ] || { echo "FAIL: atp build wrote an output although it cannot yet"; failures=$((failures + 1)); }
+
+echo "$passed passed, $failures failed"
+[ "$failures" -eq 0 ]

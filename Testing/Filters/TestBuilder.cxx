@@ -1,0 +1,144 @@
+// vtkATPBuilder as a VTK user drives it: polydata or file input, properties, progress events,
+// errors reported (not thrown), PrintSelf.
+#include "atpPartitioner.h"
+#include "atpTriangleSource.h"
+#include "vtkATPBuilder.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCellArray.h"
+#include "vtkCommand.h"
+#include "vtkNew.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkXMLPolyDataWriter.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <unistd.h>
+
+namespace
+{
+/// An n x n grid of quads on a wavy sheet: 2 n^2 triangles, 4 n boundary edges.
+vtkNew<vtkPolyData> WavySheet(int n)
+{
+  vtkNew<vtkPoints> points;
+  for (int j = 0; j <= n; ++j)
+  {
+    for (int i = 0; i <= n; ++i)
+    {
+      points->InsertNextPoint(i, j, 3 * std::sin(i * 0.3) * std::cos(j * 0.2));
+    }
+  }
+  vtkNew<vtkCellArray> quads;
+  for (int j = 0; j < n; ++j)
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      const vtkIdType a = j * (n + 1) + i;
+      const vtkIdType quad[4] = { a, a + 1, a + n + 2, a + n + 1 };
+      quads->InsertNextCell(4, quad);
+    }
+  }
+  vtkNew<vtkPolyData> sheet;
+  sheet->SetPoints(points);
+  sheet->SetPolys(quads);
+  return sheet;
+}
+
+struct ProgressLog
+{
+  std::vector<double> Values;
+};
+
+void Record(vtkObject*, unsigned long, void* client, void* call)
+{
+  static_cast<ProgressLog*>(client)->Values.push_back(*static_cast<double*>(call));
+}
+} // namespace
+
+TEST(Builder, PartitionsPolyDataInputWithProgress)
+{
+  vtkNew<vtkATPBuilder> builder;
+  builder->SetInputData(WavySheet(60));
+  builder->SetLeafCapacity(100);
+  ProgressLog log;
+  vtkNew<vtkCallbackCommand> progress;
+  progress->SetCallback(Record);
+  progress->SetClientData(&log);
+  builder->AddObserver(vtkCommand::ProgressEvent, progress);
+
+  ASSERT_EQ(builder->Build(), 1) << builder->GetErrorMessage();
+  EXPECT_EQ(builder->GetInputStats().TrianglesEmitted, 2u * 60 * 60);
+  EXPECT_EQ(builder->GetInputStats().BoundaryEdges, 4u * 60);
+  const atp::PartitionStats& p = builder->GetPartitionStats();
+  EXPECT_EQ(p.Triangles, 2u * 60 * 60);
+  EXPECT_LE(p.LargestLeaf, 100u);
+  EXPECT_GE(p.NonEmptyLeaves, 72u);
+  ASSERT_GE(log.Values.size(), 2u);
+  EXPECT_EQ(log.Values.front(), 0.0);
+  EXPECT_EQ(log.Values.back(), 1.0);
+  EXPECT_TRUE(std::is_sorted(log.Values.begin(), log.Values.end()));
+
+  // A second Build() runs again (a sink, like vtkWriter::Write).
+  log.Values.clear();
+  ASSERT_EQ(builder->Build(), 1);
+  EXPECT_FALSE(log.Values.empty());
+}
+
+TEST(Builder, StreamsAFileToTheSameResult)
+{
+  const std::string path = "/tmp/atp-test-builder-" + std::to_string(::getpid()) + ".vtp";
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetInputData(WavySheet(40));
+  writer->SetFileName(path.c_str());
+  ASSERT_EQ(writer->Write(), 1);
+
+  vtkNew<vtkATPBuilder> fromFile;
+  fromFile->SetFileName(path.c_str());
+  fromFile->SetLeafCapacity(50);
+  ASSERT_EQ(fromFile->Build(), 1) << fromFile->GetErrorMessage();
+  vtkNew<vtkATPBuilder> fromMemory;
+  fromMemory->SetInputData(WavySheet(40));
+  fromMemory->SetLeafCapacity(50);
+  ASSERT_EQ(fromMemory->Build(), 1) << fromMemory->GetErrorMessage();
+  std::remove(path.c_str());
+
+  EXPECT_EQ(fromFile->GetPartitionStats().Leaves, fromMemory->GetPartitionStats().Leaves);
+  EXPECT_EQ(fromFile->GetPartitionStats().Depth, fromMemory->GetPartitionStats().Depth);
+  EXPECT_EQ(fromFile->GetInputStats().BoundaryEdges, 160u);
+}
+
+TEST(Builder, ReportsErrorsWithoutThrowing)
+{
+  vtkNew<vtkCallbackCommand> quiet; // keep expected errors out of the test log
+  vtkNew<vtkATPBuilder> builder;
+  builder->AddObserver(vtkCommand::ErrorEvent, quiet);
+  EXPECT_EQ(builder->Build(), 0);
+  EXPECT_NE(std::string(builder->GetErrorMessage()).find("no input"), std::string::npos);
+
+  builder->SetFileName("/nonexistent/mesh.ply");
+  EXPECT_EQ(builder->Build(), 0);
+  EXPECT_NE(std::string(builder->GetErrorMessage()).find("/nonexistent/mesh.ply"),
+    std::string::npos);
+
+  vtkNew<vtkATPBuilder> empty;
+  empty->AddObserver(vtkCommand::ErrorEvent, quiet);
+  vtkNew<vtkPolyData> nothing;
+  empty->SetInputData(nothing);
+  EXPECT_EQ(empty->Build(), 0);
+  EXPECT_NE(std::string(empty->GetErrorMessage()).find("empty"), std::string::npos);
+}
+
+TEST(Builder, PrintsItsProperties)
+{
+  vtkNew<vtkATPBuilder> builder;
+  builder->SetLeafCapacity(1234);
+  builder->SetScratchDirectory("/var/tmp");
+  std::ostringstream s;
+  builder->Print(s);
+  EXPECT_NE(s.str().find("LeafCapacity: 1234"), std::string::npos);
+  EXPECT_NE(s.str().find("ScratchDirectory: /var/tmp"), std::string::npos);
+}
