@@ -1,0 +1,135 @@
+#include "atpBufferedReader.h"
+
+#include <cstring>
+
+namespace atp
+{
+namespace
+{
+bool IsSpace(unsigned char c)
+{
+  return c == ' ' || c == '\n' || c == '\r' || c == '\t' || c == '\v' || c == '\f';
+}
+} // namespace
+
+BufferedReader::BufferedReader(
+  const InputFile& file, std::uint64_t offset, std::uint64_t line, std::size_t capacity)
+  : Input(file)
+  , Buffer(capacity)
+{
+  this->Seek(offset, line);
+}
+
+void BufferedReader::Seek(std::uint64_t offset, std::uint64_t line)
+{
+  this->BufferOffset = offset;
+  this->Next = 0;
+  this->End = 0;
+  this->AtEndOfFile = false;
+  this->CurrentLine = line;
+  this->ReturnedLine = line;
+}
+
+bool BufferedReader::Fill(std::size_t need)
+{
+  if (need > this->Buffer.size())
+  {
+    return false;
+  }
+  if (this->Next > 0)
+  {
+    std::memmove(this->Buffer.data(), this->Buffer.data() + this->Next, this->End - this->Next);
+    this->BufferOffset += this->Next;
+    this->End -= this->Next;
+    this->Next = 0;
+  }
+  while (this->End < need && !this->AtEndOfFile)
+  {
+    std::size_t got = this->Input.ReadAt(this->BufferOffset + this->End,
+      this->Buffer.data() + this->End, this->Buffer.size() - this->End);
+    this->End += got;
+    this->AtEndOfFile = got == 0;
+  }
+  return this->End >= need;
+}
+
+void BufferedReader::FailTooLong(const char* what) const
+{
+  this->Input.FailAtLine(this->CurrentLine,
+    std::string(what) + " longer than " + std::to_string(this->Buffer.size()) + " bytes");
+}
+
+bool BufferedReader::NextToken(std::string_view& token)
+{
+  for (;;)
+  {
+    while (this->Next < this->End && IsSpace(this->Buffer[this->Next]))
+    {
+      this->CurrentLine += this->Buffer[this->Next] == '\n';
+      ++this->Next;
+    }
+    if (this->Next == this->End)
+    {
+      if (!this->Fill(1))
+      {
+        return false;
+      }
+      continue;
+    }
+    std::size_t end = this->Next;
+    while (end < this->End && !IsSpace(this->Buffer[end]))
+    {
+      ++end;
+    }
+    if (end == this->End && !this->AtEndOfFile)
+    {
+      // The token may go on past the buffer: read more and look again.
+      if (this->End - this->Next == this->Buffer.size())
+      {
+        this->FailTooLong("token");
+      }
+      this->Fill(this->End - this->Next + 1);
+      continue;
+    }
+    token = std::string_view(
+      reinterpret_cast<const char*>(this->Buffer.data() + this->Next), end - this->Next);
+    this->ReturnedLine = this->CurrentLine;
+    this->Next = end;
+    return true;
+  }
+}
+
+bool BufferedReader::NextLine(std::string_view& line)
+{
+  for (;;)
+  {
+    if (this->Next == this->End && !this->Fill(1))
+    {
+      return false;
+    }
+    const unsigned char* start = this->Buffer.data() + this->Next;
+    const void* newline = std::memchr(start, '\n', this->End - this->Next);
+    if (newline || this->AtEndOfFile)
+    {
+      std::size_t length = newline
+        ? static_cast<std::size_t>(static_cast<const unsigned char*>(newline) - start)
+        : this->End - this->Next;
+      this->Next += length + (newline ? 1 : 0);
+      if (length > 0 && start[length - 1] == '\r')
+      {
+        --length;
+      }
+      line = std::string_view(reinterpret_cast<const char*>(start), length);
+      this->ReturnedLine = this->CurrentLine;
+      this->CurrentLine += newline ? 1 : 0;
+      return true;
+    }
+    if (this->End - this->Next == this->Buffer.size())
+    {
+      this->FailTooLong("line");
+    }
+    this->Fill(this->End - this->Next + 1);
+  }
+}
+
+} // namespace atp

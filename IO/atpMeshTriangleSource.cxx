@@ -1,0 +1,162 @@
+#include "atpMeshTriangleSource.h"
+
+#include <cmath>
+#include <cstring>
+
+namespace atp
+{
+namespace
+{
+/// Whether a * b == c * d exactly: fma recovers each product's rounding error, and the error is
+/// only computed (a slow call without hardware fma) when the rounded products are equal.
+bool ExactProductsEqual(double a, double b, double c, double d)
+{
+  const double p = a * b;
+  const double q = c * d;
+  return p == q && std::fma(a, b, -p) == std::fma(c, d, -q);
+}
+
+/// Whether the cross product of the float edges is exactly zero. Differences of floats are exact
+/// in double unless the coordinates differ in magnitude by more than 2^29, and products of such
+/// doubles neither overflow nor lose their rounding error to underflow.
+bool HasZeroArea(const float v[3][3])
+{
+  double e[3], f[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    e[a] = double(v[1][a]) - double(v[0][a]);
+    f[a] = double(v[2][a]) - double(v[0][a]);
+  }
+  return ExactProductsEqual(e[1], f[2], e[2], f[1]) && ExactProductsEqual(e[2], f[0], e[0], f[2]) &&
+    ExactProductsEqual(e[0], f[1], e[1], f[0]);
+}
+
+} // namespace
+
+MeshTriangleSource::MeshTriangleSource(
+  std::unique_ptr<PolygonMesh> mesh, const std::string& path, const std::string& scratchDirectory)
+  : Path(path)
+  , Mesh(std::move(mesh))
+  , Vertices(this->Mesh->Vertices())
+  , Sketch(this->Vertices.Count, scratchDirectory)
+{
+  this->CheckVerticesAndBound();
+  this->BuildSketch();
+}
+
+void MeshTriangleSource::CheckVerticesAndBound()
+{
+  this->Statistics.VerticesRead = this->Vertices.Count;
+  for (std::uint64_t i = 0; i < this->Vertices.Count; ++i)
+  {
+    float p[3];
+    this->Vertices.Get(static_cast<std::uint32_t>(i), p);
+    if (const char* bad = FirstNonFinite(p))
+    {
+      throw InputError(this->Path + ": vertex " + std::to_string(i) +
+        " has a non-finite coordinate (" + bad + ")");
+    }
+    this->VertexBounds.Add(p);
+  }
+}
+
+bool MeshTriangleSource::Keep(const std::uint32_t triangle[3], float corners[3][3]) const
+{
+  if (triangle[0] == triangle[1] || triangle[1] == triangle[2] || triangle[2] == triangle[0])
+  {
+    return false;
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    this->Vertices.Get(triangle[c], corners[c]);
+  }
+  return !HasZeroArea(corners);
+}
+
+void MeshTriangleSource::BuildSketch()
+{
+  PolygonBatch batch;
+  while (this->Mesh->NextBatch(batch))
+  {
+    this->Statistics.FacesRead += batch.Count;
+    for (std::size_t k = 0; k < batch.Count; ++k)
+    {
+      this->Statistics.DegenerateDropped += batch.Sizes[k] < 3;
+    }
+    this->Fans.Reset(batch);
+    std::uint32_t triangle[3];
+    float corners[3][3];
+    while (this->Fans.Next(triangle))
+    {
+      if (this->Keep(triangle, corners))
+      {
+        this->Sketch.AddTriangle(triangle[0], triangle[1], triangle[2]);
+        ++this->KeptTriangles;
+      }
+      else
+      {
+        ++this->Statistics.DegenerateDropped;
+      }
+    }
+  }
+  if (this->KeptTriangles == 0)
+  {
+    throw InputError(this->Path + ": empty mesh (no triangles: " +
+      (this->Statistics.FacesRead == 0
+          ? std::string("the file has no faces")
+          : "all " + std::to_string(this->Statistics.DegenerateDropped) + " are degenerate") +
+      ")");
+  }
+  this->Mesh->Rewind();
+  this->Fans.Reset(PolygonBatch());
+}
+
+bool MeshTriangleSource::StartNextBatch()
+{
+  PolygonBatch batch;
+  if (this->FacesDone || !this->Mesh->NextBatch(batch))
+  {
+    this->FacesDone = true;
+    return false;
+  }
+  this->Fans.Reset(batch);
+  return true;
+}
+
+std::size_t MeshTriangleSource::Read(SoupTriangle* out, std::size_t max)
+{
+  std::size_t n = 0;
+  std::uint32_t triangle[3];
+  while (n < max)
+  {
+    if (!this->Fans.Next(triangle))
+    {
+      if (!this->StartNextBatch())
+      {
+        break;
+      }
+      continue;
+    }
+    SoupTriangle& soup = out[n];
+    if (!this->Keep(triangle, soup.V))
+    {
+      continue;
+    }
+    std::uint8_t boundary = 0;
+    for (int c = 0; c < 3; ++c)
+    {
+      if (this->Sketch.IsBoundaryEdge(triangle[c], triangle[(c + 1) % 3]))
+      {
+        boundary |= std::uint8_t(1u << c);
+        ++this->Statistics.BoundaryEdges;
+      }
+    }
+    soup.BoundaryEdges = boundary;
+    std::memset(soup.Padding, 0, sizeof(soup.Padding));
+    ++n;
+  }
+  this->Statistics.TrianglesEmitted += n;
+  return n;
+}
+
+} // namespace atp

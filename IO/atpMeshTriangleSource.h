@@ -1,0 +1,51 @@
+// The one path from a format reader's polygons to soup triangles, shared by every format: fan
+// triangulation, dropping degenerate triangles, and marking boundary edges with a BoundarySketch.
+// Opening makes a first pass over the faces (sketch, counts, errors); Read makes the second.
+#ifndef atpMeshTriangleSource_h
+#define atpMeshTriangleSource_h
+
+#include "atpBoundarySketch.h"
+#include "atpFanCursor.h"
+#include "atpPolygonMesh.h"
+#include "atpTriangleSource.h"
+
+#include <memory>
+#include <string>
+
+namespace atp
+{
+
+class MeshTriangleSource final : public TriangleSource
+{
+public:
+  /// Checks the vertices, computes the bounds and makes the first pass over the faces.
+  /// Throws InputError naming `path` (bad input, or no triangle left).
+  MeshTriangleSource(std::unique_ptr<PolygonMesh> mesh, const std::string& path,
+    const std::string& scratchDirectory);
+
+  Box Bounds() const override { return this->VertexBounds; }
+  std::uint64_t ExpectedTriangles() const override { return this->KeptTriangles; }
+  std::size_t Read(SoupTriangle* out, std::size_t max) override;
+  const InputStats& Stats() const override { return this->Statistics; }
+
+private:
+  void CheckVerticesAndBound();
+  void BuildSketch();
+  /// Gets the corner positions; false for a degenerate triangle.
+  bool Keep(const std::uint32_t triangle[3], float corners[3][3]) const;
+  bool StartNextBatch();
+
+  std::string Path;
+  std::unique_ptr<PolygonMesh> Mesh;
+  VertexView Vertices;
+  Box VertexBounds;
+  BoundarySketch Sketch;
+  InputStats Statistics;
+  std::uint64_t KeptTriangles = 0;
+  FanCursor Fans;
+  bool FacesDone = false;
+};
+
+} // namespace atp
+
+#endif

@@ -1,0 +1,92 @@
+// A stream of triangles (a "triangle soup") read from a mesh file, never holding the whole mesh.
+// Plain C++: no VTK types. Every reader of an input format implements this interface.
+#ifndef atpTriangleSource_h
+#define atpTriangleSource_h
+
+#include "vtkATPIOModule.h" // export macro
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace atp
+{
+
+/// Axis-aligned box, in input coordinates. Empty until the first point is added.
+struct VTKATPIO_EXPORT Box
+{
+  std::array<double, 3> Min{ { 1e300, 1e300, 1e300 } };
+  std::array<double, 3> Max{ { -1e300, -1e300, -1e300 } };
+
+  bool IsEmpty() const { return Min[0] > Max[0]; }
+  void Add(const float p[3])
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      Min[a] = p[a] < Min[a] ? p[a] : Min[a];
+      Max[a] = p[a] > Max[a] ? p[a] : Max[a];
+    }
+  }
+};
+
+/// One input triangle with its corner positions copied (soup form), 40 bytes.
+struct SoupTriangle
+{
+  float V[3][3];
+  /// Bit i set: the edge from corner i to corner (i+1)%3 is a boundary edge of the input mesh
+  /// (used by exactly one triangle). Simplification must know these (paper, section 5.2).
+  std::uint8_t BoundaryEdges;
+  std::uint8_t Padding[3];
+};
+static_assert(sizeof(SoupTriangle) == 40, "SoupTriangle is an on-disk record: keep it packed");
+
+/// A problem with an input file. The message names the file and says what is wrong.
+class VTKATPIO_EXPORT InputError : public std::runtime_error
+{
+public:
+  using std::runtime_error::runtime_error;
+};
+
+/// What reading the input found, for the user's summary.
+struct InputStats
+{
+  std::uint64_t VerticesRead = 0;
+  std::uint64_t FacesRead = 0;           ///< faces in the file (polygons count once)
+  std::uint64_t TrianglesEmitted = 0;    ///< after fan triangulation, minus dropped ones
+  std::uint64_t DegenerateDropped = 0;   ///< repeated corner or zero area: dropped, not fatal
+  std::uint64_t BoundaryEdges = 0;       ///< edges used by exactly one triangle
+};
+
+class VTKATPIO_EXPORT TriangleSource
+{
+public:
+  virtual ~TriangleSource();
+
+  /// Bounds of all vertices; known as soon as the source is open (the partitioner needs the
+  /// box before the first triangle).
+  virtual Box Bounds() const = 0;
+
+  /// Number of triangles expected, for progress reporting (an estimate: polygons and dropped
+  /// degenerate triangles make the real count differ). 0 when unknown.
+  virtual std::uint64_t ExpectedTriangles() const = 0;
+
+  /// Fills out[0..max) with the next triangles and returns how many; 0 means the end.
+  /// Throws InputError on malformed or truncated input.
+  virtual std::size_t Read(SoupTriangle* out, std::size_t max) = 0;
+
+  virtual const InputStats& Stats() const = 0;
+};
+
+/// Opens PLY (ASCII or binary), OBJ, STL (ASCII or binary) or VTP by file extension.
+/// Large inputs (PLY, OBJ, STL) are streamed; VTP is read in memory by VTK.
+/// `scratchDirectory` receives temporary arrays (removed when the source is destroyed).
+/// Throws InputError naming the file and the problem.
+VTKATPIO_EXPORT std::unique_ptr<TriangleSource> OpenTriangleSource(
+  const std::string& path, const std::string& scratchDirectory);
+
+} // namespace atp
+
+#endif

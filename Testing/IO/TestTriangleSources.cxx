@@ -1,0 +1,1033 @@
+// OpenTriangleSource on every input format: the triangles and boundary flags it yields, what it
+// drops, and a clear InputError (never a crash) for every kind of bad input. Inputs are written
+// into a temporary directory by the tests themselves.
+#include "atpTriangleSource.h"
+
+#include <vtkCellArray.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+namespace fs = std::filesystem;
+
+// ---------------------------------------------------------------------------------------------
+// Test meshes and what a source should yield for them
+
+struct Mesh
+{
+  std::vector<std::array<double, 3>> Points;
+  std::vector<std::vector<std::int64_t>> Faces;
+};
+
+/// A flat nx by ny grid of unit quads in z = 0; with `quads` the faces are quads, else triangles.
+Mesh Grid(int nx, int ny, bool quads)
+{
+  Mesh mesh;
+  for (int j = 0; j <= ny; ++j)
+  {
+    for (int i = 0; i <= nx; ++i)
+    {
+      mesh.Points.push_back({ double(i), double(j), 0.0 });
+    }
+  }
+  auto id = [&](int i, int j) { return std::int64_t(j * (nx + 1) + i); };
+  for (int j = 0; j < ny; ++j)
+  {
+    for (int i = 0; i < nx; ++i)
+    {
+      if (quads)
+      {
+        mesh.Faces.push_back({ id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1) });
+      }
+      else
+      {
+        mesh.Faces.push_back({ id(i, j), id(i + 1, j), id(i + 1, j + 1) });
+        mesh.Faces.push_back({ id(i, j), id(i + 1, j + 1), id(i, j + 1) });
+      }
+    }
+  }
+  return mesh;
+}
+
+/// A closed tetrahedron, outward oriented.
+Mesh Tetrahedron()
+{
+  Mesh mesh;
+  mesh.Points = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+  mesh.Faces = { { 0, 2, 1 }, { 0, 1, 3 }, { 1, 2, 3 }, { 2, 0, 3 } };
+  return mesh;
+}
+
+/// Everything read from a source, in small chunks to exercise resuming mid-polygon.
+struct Result
+{
+  std::vector<atp::SoupTriangle> Triangles;
+  atp::Box Bounds;
+  std::uint64_t Expected = 0;
+  atp::InputStats Stats;
+};
+
+Result ReadAll(const std::string& path, const std::string& scratch, std::size_t chunk = 5)
+{
+  auto source = atp::OpenTriangleSource(path, scratch);
+  Result result;
+  result.Bounds = source->Bounds();
+  result.Expected = source->ExpectedTriangles();
+  std::vector<atp::SoupTriangle> buffer(chunk);
+  while (std::size_t n = source->Read(buffer.data(), buffer.size()))
+  {
+    result.Triangles.insert(result.Triangles.end(), buffer.begin(), buffer.begin() + long(n));
+  }
+  EXPECT_EQ(source->Read(buffer.data(), buffer.size()), 0u) << "the end stays the end";
+  result.Stats = source->Stats();
+  return result;
+}
+
+/// Total boundary bits over all triangles.
+std::uint64_t BoundaryBits(const Result& result)
+{
+  std::uint64_t bits = 0;
+  for (const atp::SoupTriangle& t : result.Triangles)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      bits += (t.BoundaryEdges >> c) & 1u;
+    }
+  }
+  return bits;
+}
+
+/// The triangles of `mesh` as a soup (fans, in order), without boundary flags.
+std::vector<std::array<float, 9>> ExpectedSoup(const Mesh& mesh)
+{
+  std::vector<std::array<float, 9>> soup;
+  for (const auto& face : mesh.Faces)
+  {
+    for (std::size_t k = 1; k + 1 < face.size(); ++k)
+    {
+      std::array<float, 9> t;
+      const std::int64_t corners[3] = { face[0], face[k], face[k + 1] };
+      for (int c = 0; c < 3; ++c)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          t[3 * c + a] = float(mesh.Points[std::size_t(corners[c])][std::size_t(a)]);
+        }
+      }
+      soup.push_back(t);
+    }
+  }
+  return soup;
+}
+
+std::vector<std::array<float, 9>> Soup(const Result& result)
+{
+  std::vector<std::array<float, 9>> soup;
+  for (const atp::SoupTriangle& t : result.Triangles)
+  {
+    std::array<float, 9> s;
+    std::memcpy(s.data(), t.V, sizeof(t.V));
+    soup.push_back(s);
+  }
+  return soup;
+}
+
+/// Checks a source read of `mesh` (an open or closed manifold) against the mesh itself.
+void ExpectMesh(const Result& result, const Mesh& mesh, std::uint64_t boundaryEdges)
+{
+  EXPECT_EQ(Soup(result), ExpectedSoup(mesh));
+  EXPECT_EQ(result.Expected, result.Triangles.size());
+  EXPECT_EQ(result.Stats.TrianglesEmitted, result.Triangles.size());
+  EXPECT_EQ(result.Stats.VerticesRead, mesh.Points.size());
+  EXPECT_EQ(result.Stats.FacesRead, mesh.Faces.size());
+  EXPECT_EQ(result.Stats.DegenerateDropped, 0u);
+  EXPECT_EQ(result.Stats.BoundaryEdges, boundaryEdges);
+  EXPECT_EQ(BoundaryBits(result), boundaryEdges);
+  for (int a = 0; a < 3; ++a)
+  {
+    double lo = 1e300, hi = -1e300;
+    for (const auto& p : mesh.Points)
+    {
+      lo = std::min(lo, p[std::size_t(a)]);
+      hi = std::max(hi, p[std::size_t(a)]);
+    }
+    EXPECT_EQ(result.Bounds.Min[std::size_t(a)], float(lo));
+    EXPECT_EQ(result.Bounds.Max[std::size_t(a)], float(hi));
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Writers
+
+class TriangleSources : public ::testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    this->Dir = fs::temp_directory_path() /
+      ("atp-io-test-" + std::to_string(::getpid()) + "-" + info->name());
+    fs::remove_all(this->Dir);
+    fs::create_directories(this->Dir);
+  }
+  void TearDown() override { fs::remove_all(this->Dir); }
+
+  std::string Path(const std::string& name) const { return (this->Dir / name).string(); }
+  std::string Scratch() const { return this->Dir.string(); }
+
+  std::string Write(const std::string& name, const std::string& bytes) const
+  {
+    std::ofstream out(this->Path(name), std::ios::binary);
+    out << bytes;
+    return this->Path(name);
+  }
+
+  Result Read(const std::string& path, std::size_t chunk = 5) const
+  {
+    return ReadAll(path, this->Scratch(), chunk);
+  }
+
+  /// Opens and reads `path` expecting an InputError whose message names the file and contains
+  /// `problem`.
+  void ExpectError(const std::string& path, const std::string& problem) const
+  {
+    try
+    {
+      ReadAll(path, this->Scratch());
+      ADD_FAILURE() << path << ": no error, expected one about '" << problem << "'";
+    }
+    catch (const atp::InputError& error)
+    {
+      const std::string message = error.what();
+      EXPECT_NE(message.find(fs::path(path).filename().string()), std::string::npos) << message;
+      EXPECT_NE(message.find(problem), std::string::npos)
+        << "message: " << message << "\nexpected to contain: " << problem;
+    }
+  }
+
+  fs::path Dir;
+};
+
+struct PlyOptions
+{
+  std::string Format = "binary_little_endian";
+  std::string CoordinateType = "float";
+  std::string CountType = "uchar";
+  std::string IndexType = "int";
+  std::string ListName = "vertex_indices";
+  bool ExtraProperties = false; // colour before x, normal after z, a texcoord list per face
+  bool ExtraElement = false;    // an element with a list between vertices and faces
+  bool FacesFirst = false;
+  bool ShuffledCoordinates = false; // z, x, y order
+};
+
+void Put(std::string& out, const std::string& type, double value, const PlyOptions& options)
+{
+  if (options.Format == "ascii")
+  {
+    std::ostringstream text;
+    text.precision(17);
+    text << value << ' ';
+    out += text.str();
+    return;
+  }
+  unsigned char bytes[8];
+  std::size_t size = 0;
+  auto store = [&](auto v)
+  {
+    size = sizeof(v);
+    std::memcpy(bytes, &v, size);
+  };
+  if (type == "char")
+    store(std::int8_t(value));
+  else if (type == "uchar")
+    store(std::uint8_t(value));
+  else if (type == "short")
+    store(std::int16_t(value));
+  else if (type == "ushort")
+    store(std::uint16_t(value));
+  else if (type == "int")
+    store(std::int32_t(value));
+  else if (type == "uint")
+    store(std::uint32_t(value));
+  else if (type == "float")
+    store(float(value));
+  else
+    store(double(value));
+  if (options.Format == "binary_big_endian")
+  {
+    std::reverse(bytes, bytes + size);
+  }
+  out.append(reinterpret_cast<const char*>(bytes), size);
+}
+
+void EndRecord(std::string& out, const PlyOptions& options)
+{
+  if (options.Format == "ascii")
+  {
+    out += '\n';
+  }
+}
+
+std::string PlyBytes(const Mesh& mesh, const PlyOptions& options = PlyOptions())
+{
+  const std::string& c = options.CoordinateType;
+  std::string vertexHeader = "element vertex " + std::to_string(mesh.Points.size()) + "\n";
+  if (options.ExtraProperties)
+  {
+    vertexHeader += "property uchar red\n";
+  }
+  vertexHeader += options.ShuffledCoordinates
+    ? "property " + c + " z\nproperty " + c + " x\nproperty " + c + " y\n"
+    : "property " + c + " x\nproperty " + c + " y\nproperty " + c + " z\n";
+  if (options.ExtraProperties)
+  {
+    vertexHeader += "property float nx\n";
+  }
+  std::string faceHeader = "element face " + std::to_string(mesh.Faces.size()) + "\n";
+  if (options.ExtraProperties)
+  {
+    faceHeader += "property uchar flags\n";
+  }
+  faceHeader +=
+    "property list " + options.CountType + " " + options.IndexType + " " + options.ListName + "\n";
+  if (options.ExtraProperties)
+  {
+    faceHeader += "property list uchar float texcoord\n";
+  }
+  const std::string extraHeader = options.ExtraElement
+    ? "element material 2\nproperty list int short codes\nproperty double shine\n"
+    : "";
+
+  std::string vertices;
+  for (std::size_t i = 0; i < mesh.Points.size(); ++i)
+  {
+    const auto& p = mesh.Points[i];
+    if (options.ExtraProperties)
+    {
+      Put(vertices, "uchar", double(i % 200), options);
+    }
+    if (options.ShuffledCoordinates)
+    {
+      Put(vertices, c, p[2], options);
+      Put(vertices, c, p[0], options);
+      Put(vertices, c, p[1], options);
+    }
+    else
+    {
+      for (double x : p)
+      {
+        Put(vertices, c, x, options);
+      }
+    }
+    if (options.ExtraProperties)
+    {
+      Put(vertices, "float", 0.5, options);
+    }
+    EndRecord(vertices, options);
+  }
+  std::string faces;
+  for (const auto& face : mesh.Faces)
+  {
+    if (options.ExtraProperties)
+    {
+      Put(faces, "uchar", 7, options);
+    }
+    Put(faces, options.CountType, double(face.size()), options);
+    for (std::int64_t v : face)
+    {
+      Put(faces, options.IndexType, double(v), options);
+    }
+    if (options.ExtraProperties)
+    {
+      Put(faces, "uchar", 2, options);
+      Put(faces, "float", 0.25, options);
+      Put(faces, "float", 0.75, options);
+    }
+    EndRecord(faces, options);
+  }
+  std::string extra;
+  if (options.ExtraElement)
+  {
+    for (int m = 0; m < 2; ++m)
+    {
+      Put(extra, "int", 3, options);
+      for (int k = 0; k < 3; ++k)
+      {
+        Put(extra, "short", k, options);
+      }
+      Put(extra, "double", 1.5, options);
+      EndRecord(extra, options);
+    }
+  }
+
+  std::string header = "ply\nformat " + options.Format + " 1.0\ncomment written by a test\n";
+  if (options.FacesFirst)
+  {
+    return header + faceHeader + extraHeader + vertexHeader + "end_header\n" + faces + extra +
+      vertices;
+  }
+  return header + vertexHeader + extraHeader + faceHeader + "end_header\n" + vertices + extra +
+    faces;
+}
+
+std::string ObjBytes(const Mesh& mesh)
+{
+  std::ostringstream out;
+  out.precision(17);
+  out << "# test\no thing\n";
+  for (const auto& p : mesh.Points)
+  {
+    out << "v " << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+  }
+  for (const auto& face : mesh.Faces)
+  {
+    out << 'f';
+    for (std::int64_t v : face)
+    {
+      out << ' ' << v + 1;
+    }
+    out << '\n';
+  }
+  return out.str();
+}
+
+std::string BinaryStlBytes(const Mesh& mesh, const std::string& headerText)
+{
+  std::string out = headerText;
+  out.resize(80, ' ');
+  const std::uint32_t count = std::uint32_t(mesh.Faces.size());
+  out.append(reinterpret_cast<const char*>(&count), 4);
+  for (const auto& face : mesh.Faces)
+  {
+    float record[12] = { 0 };
+    for (int c = 0; c < 3; ++c)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        record[3 + 3 * c + a] =
+          float(mesh.Points[std::size_t(face[std::size_t(c)])][std::size_t(a)]);
+      }
+    }
+    out.append(reinterpret_cast<const char*>(record), sizeof(record));
+    out.append(2, '\0');
+  }
+  return out;
+}
+
+std::string AsciiStlBytes(const Mesh& mesh)
+{
+  std::ostringstream out;
+  out << "solid my part\n";
+  for (const auto& face : mesh.Faces)
+  {
+    out << "  facet normal 0 0 1\n    outer loop\n";
+    for (std::int64_t v : face)
+    {
+      const auto& p = mesh.Points[std::size_t(v)];
+      out << "      vertex " << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+    }
+    out << "    endloop\n  endfacet\n";
+  }
+  out << "endsolid my part\n";
+  return out.str();
+}
+
+// ---------------------------------------------------------------------------------------------
+// PLY
+
+TEST_F(TriangleSources, BinaryLittleEndianPly)
+{
+  const Mesh mesh = Grid(4, 3, false);
+  ExpectMesh(this->Read(this->Write("grid.ply", PlyBytes(mesh))), mesh, 2 * (4 + 3));
+}
+
+TEST_F(TriangleSources, BinaryPlyReadInOneGoOrOneAtATime)
+{
+  const Mesh mesh = Grid(5, 5, true);
+  const std::string path = this->Write("grid.ply", PlyBytes(mesh));
+  const Result one = this->Read(path, 1);
+  const Result all = this->Read(path, 1000);
+  EXPECT_EQ(Soup(one), Soup(all));
+  EXPECT_EQ(BoundaryBits(one), BoundaryBits(all));
+  ExpectMesh(all, mesh, 20);
+}
+
+TEST_F(TriangleSources, BinaryBigEndianPlyWithDoublesAndOtherProperties)
+{
+  const Mesh mesh = Grid(3, 3, true);
+  PlyOptions options;
+  options.Format = "binary_big_endian";
+  options.CoordinateType = "double";
+  options.CountType = "ushort";
+  options.IndexType = "uint";
+  options.ExtraProperties = true;
+  options.ExtraElement = true;
+  ExpectMesh(this->Read(this->Write("grid.ply", PlyBytes(mesh, options))), mesh, 12);
+}
+
+TEST_F(TriangleSources, BinaryLittleEndianPlyWithOtherPropertiesAndDoubles)
+{
+  const Mesh mesh = Tetrahedron();
+  PlyOptions options;
+  options.CoordinateType = "double";
+  options.CountType = "int";
+  options.IndexType = "ushort";
+  options.ExtraProperties = true;
+  ExpectMesh(this->Read(this->Write("tet.ply", PlyBytes(mesh, options))), mesh, 0);
+}
+
+TEST_F(TriangleSources, BinaryPlyFloatsAmongOtherProperties)
+{
+  // x, y, z floats inside a larger record: read in place with a stride.
+  const Mesh mesh = Grid(2, 2, false);
+  PlyOptions options;
+  options.ExtraProperties = true;
+  options.ExtraElement = true;
+  ExpectMesh(this->Read(this->Write("grid.ply", PlyBytes(mesh, options))), mesh, 8);
+}
+
+TEST_F(TriangleSources, PlyPropertyOrderAndElementOrder)
+{
+  const Mesh mesh = Grid(3, 2, false);
+  PlyOptions shuffled;
+  shuffled.ShuffledCoordinates = true;
+  ExpectMesh(this->Read(this->Write("a.ply", PlyBytes(mesh, shuffled))), mesh, 10);
+  PlyOptions facesFirst;
+  facesFirst.FacesFirst = true;
+  facesFirst.ExtraElement = true;
+  facesFirst.ExtraProperties = true;
+  ExpectMesh(this->Read(this->Write("b.ply", PlyBytes(mesh, facesFirst))), mesh, 10);
+  facesFirst.Format = "ascii";
+  ExpectMesh(this->Read(this->Write("c.ply", PlyBytes(mesh, facesFirst))), mesh, 10);
+}
+
+TEST_F(TriangleSources, PlyCountAndIndexTypes)
+{
+  const Mesh mesh = Grid(2, 3, true);
+  const char* counts[] = { "uchar", "char", "ushort", "short", "uint", "int" };
+  const char* indices[] = { "int", "uint", "short", "ushort", "uchar", "char" };
+  for (const char* count : counts)
+  {
+    for (const char* index : indices)
+    {
+      for (const char* format : { "binary_little_endian", "binary_big_endian", "ascii" })
+      {
+        PlyOptions options;
+        options.Format = format;
+        options.CountType = count;
+        options.IndexType = index;
+        options.ListName = "vertex_index";
+        SCOPED_TRACE(std::string(format) + " list " + count + " " + index);
+        ExpectMesh(this->Read(this->Write("types.ply", PlyBytes(mesh, options))), mesh, 10);
+      }
+    }
+  }
+}
+
+TEST_F(TriangleSources, AsciiPlyWithPolygons)
+{
+  Mesh mesh = Grid(3, 3, true);
+  mesh.Points[5][2] = 0.25; // not flat: fans must still match
+  PlyOptions options;
+  options.Format = "ascii";
+  options.ExtraProperties = true;
+  options.ExtraElement = true;
+  ExpectMesh(this->Read(this->Write("quads.ply", PlyBytes(mesh, options))), mesh, 12);
+}
+
+TEST_F(TriangleSources, AsciiPlyIgnoresLineLayoutAndCarriageReturns)
+{
+  const std::string text = "ply\r\nformat ascii 1.0\r\nelement vertex 3\r\nproperty float x\r\n"
+                           "property float y\r\nproperty float z\r\nelement face 1\r\n"
+                           "property list uchar int vertex_indices\r\nend_header\r\n"
+                           "0 0 0\r\n1 0 0 0 1\r\n+0\r\n3 0\r\n1 2";
+  const Result result = this->Read(this->Write("crlf.ply", text));
+  ASSERT_EQ(result.Triangles.size(), 1u);
+  EXPECT_EQ(result.Triangles[0].V[2][1], 1.0f);
+  EXPECT_EQ(result.Triangles[0].BoundaryEdges, 7);
+}
+
+TEST_F(TriangleSources, UppercaseExtension)
+{
+  const Mesh mesh = Tetrahedron();
+  ExpectMesh(this->Read(this->Write("TET.PLY", PlyBytes(mesh))), mesh, 0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// OBJ
+
+TEST_F(TriangleSources, ObjTriangles)
+{
+  const Mesh mesh = Grid(4, 4, false);
+  ExpectMesh(this->Read(this->Write("grid.obj", ObjBytes(mesh))), mesh, 16);
+}
+
+TEST_F(TriangleSources, ObjCornerFormsNegativeIndicesPolygonsAndInterleaving)
+{
+  // A unit square as a quad written with relative indices after its vertices, then a triangle
+  // whose vertex comes after it with i/t/n and i//n corners, and lines to ignore.
+  const std::string text = "# comment\nmtllib x.mtl\nv 0 0 0\nv 1 0 0\nvt 0 0\nvn 0 0 1\n"
+                           "v 1 1 0\nv 0 1 0\ng group\nusemtl m\ns off\n"
+                           "f -4/1 -3/1 -2/1 -1/1\n"
+                           "f 2/1/1 5//1 3\n"
+                           "v 2 0.5 0\n"
+                           "l 1 2\n";
+  Mesh mesh;
+  mesh.Points = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 }, { 2, 0.5, 0 } };
+  mesh.Faces = { { 0, 1, 2, 3 }, { 1, 4, 2 } };
+  ExpectMesh(this->Read(this->Write("mixed.obj", text)), mesh, 5);
+}
+
+TEST_F(TriangleSources, ObjRelativeIndicesCountOnlyEarlierVertices)
+{
+  const std::string text =
+    "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nv 5 5 5\nv 6 5 5\nv 5 6 5\nf -3 -2 -1\n";
+  const Result result = this->Read(this->Write("rel.obj", text));
+  ASSERT_EQ(result.Triangles.size(), 2u);
+  EXPECT_EQ(result.Triangles[0].V[1][0], 1.0f);
+  EXPECT_EQ(result.Triangles[1].V[0][0], 5.0f);
+}
+
+// ---------------------------------------------------------------------------------------------
+// STL
+
+TEST_F(TriangleSources, BinaryStlIsWelded)
+{
+  const Mesh closed = Tetrahedron();
+  ExpectMesh(this->Read(this->Write("tet.stl", BinaryStlBytes(closed, "binary"))), closed, 0);
+  const Mesh open = Grid(3, 2, false);
+  const Result result = this->Read(this->Write("grid.stl", BinaryStlBytes(open, "made by x")));
+  EXPECT_EQ(Soup(result), ExpectedSoup(open));
+  EXPECT_EQ(result.Stats.VerticesRead, open.Points.size()) << "welded";
+  EXPECT_EQ(result.Stats.BoundaryEdges, 10u);
+}
+
+TEST_F(TriangleSources, BinaryStlWhoseHeaderSaysSolid)
+{
+  const Mesh mesh = Tetrahedron();
+  ExpectMesh(this->Read(this->Write("solid.stl", BinaryStlBytes(mesh, "solid tet"))), mesh, 0);
+}
+
+TEST_F(TriangleSources, AsciiStl)
+{
+  const Mesh mesh = Grid(2, 2, false);
+  const Result result = this->Read(this->Write("grid.stl", AsciiStlBytes(mesh)));
+  EXPECT_EQ(Soup(result), ExpectedSoup(mesh));
+  EXPECT_EQ(result.Stats.BoundaryEdges, 8u);
+  EXPECT_EQ(result.Stats.VerticesRead, 9u);
+}
+
+TEST_F(TriangleSources, StlWeldsNegativeAndPositiveZero)
+{
+  Mesh mesh;
+  mesh.Points = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { -0.0, 0, 0 } };
+  mesh.Faces = { { 0, 1, 2 }, { 3, 2, 1 } };
+  const Result result = this->Read(this->Write("zero.stl", BinaryStlBytes(mesh, "")));
+  EXPECT_EQ(result.Stats.VerticesRead, 3u);
+  EXPECT_EQ(result.Stats.BoundaryEdges, 0u) << "the two triangles are the same, reversed";
+}
+
+// ---------------------------------------------------------------------------------------------
+// VTP
+
+TEST_F(TriangleSources, VtpPolygonsAndStrips)
+{
+  vtkNew<vtkPoints> points;
+  for (int j = 0; j <= 1; ++j)
+  {
+    for (int i = 0; i <= 3; ++i)
+    {
+      points->InsertNextPoint(i, j, 0);
+    }
+  }
+  vtkNew<vtkCellArray> polys;
+  const vtkIdType quad[4] = { 0, 1, 5, 4 };
+  polys->InsertNextCell(4, quad);
+  vtkNew<vtkCellArray> strips;
+  const vtkIdType strip[6] = { 1, 5, 2, 6, 3, 7 };
+  strips->InsertNextCell(6, strip);
+  vtkNew<vtkCellArray> lines;
+  const vtkIdType line[2] = { 0, 7 };
+  lines->InsertNextCell(2, line);
+  vtkNew<vtkPolyData> polyData;
+  polyData->SetPoints(points);
+  polyData->SetPolys(polys);
+  polyData->SetStrips(strips);
+  polyData->SetLines(lines);
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetInputData(polyData);
+  writer->SetFileName(this->Path("strip.vtp").c_str());
+  ASSERT_EQ(writer->Write(), 1);
+
+  Mesh mesh;
+  for (int j = 0; j <= 1; ++j)
+  {
+    for (int i = 0; i <= 3; ++i)
+    {
+      mesh.Points.push_back({ double(i), double(j), 0 });
+    }
+  }
+  // Strip triangles alternate orientation so that all face the same way.
+  mesh.Faces = { { 0, 1, 5, 4 }, { 1, 5, 2 }, { 5, 6, 2 }, { 2, 6, 3 }, { 6, 7, 3 } };
+  const Result result = this->Read(this->Path("strip.vtp"));
+  EXPECT_EQ(Soup(result), ExpectedSoup(mesh));
+  EXPECT_EQ(result.Stats.BoundaryEdges, 8u);
+  EXPECT_EQ(result.Stats.TrianglesEmitted, 6u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Degenerate triangles and boundary flags
+
+TEST_F(TriangleSources, DegenerateTrianglesAreDroppedAndCounted)
+{
+  Mesh mesh = Grid(2, 1, false);        // 4 triangles, 6 points
+  mesh.Points.push_back({ 0.5, 0, 0 }); // 6: on the edge from 0 to 1
+  mesh.Faces.push_back({ 0, 0, 3 });    // repeated corner
+  mesh.Faces.push_back({ 0, 6, 1 });    // collinear: zero area
+  mesh.Faces.push_back({ 4, 3 });       // two corners
+  for (const char* format : { "binary_little_endian", "ascii" })
+  {
+    PlyOptions options;
+    options.Format = format;
+    const Result result = this->Read(this->Write("degenerate.ply", PlyBytes(mesh, options)));
+    EXPECT_EQ(result.Triangles.size(), 4u);
+    EXPECT_EQ(result.Expected, 4u);
+    EXPECT_EQ(result.Stats.FacesRead, 7u);
+    EXPECT_EQ(result.Stats.DegenerateDropped, 3u);
+    EXPECT_EQ(result.Stats.BoundaryEdges, 6u) << "the dropped triangles do not count";
+  }
+}
+
+TEST_F(TriangleSources, TinyButNonZeroAreaIsKept)
+{
+  // A sliver whose area underflows float arithmetic but is exactly non-zero.
+  Mesh mesh;
+  mesh.Points = { { 0, 0, 0 }, { 1, 0, 0 }, { 0.5, 1e-30, 0 }, { 1e20, 1e-20, 0 } };
+  mesh.Faces = { { 0, 1, 2 }, { 0, 1, 3 } };
+  const Result result = this->Read(this->Write("sliver.ply", PlyBytes(mesh)));
+  EXPECT_EQ(result.Triangles.size(), 2u);
+  EXPECT_EQ(result.Stats.DegenerateDropped, 0u);
+}
+
+TEST_F(TriangleSources, BoundaryFlagsMarkTheRightEdges)
+{
+  // Two triangles sharing the diagonal 0-2 of a square: every edge but the diagonal is boundary.
+  Mesh mesh;
+  mesh.Points = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 } };
+  mesh.Faces = { { 0, 1, 2 }, { 0, 2, 3 } };
+  const Result result = this->Read(this->Write("square.ply", PlyBytes(mesh)));
+  ASSERT_EQ(result.Triangles.size(), 2u);
+  EXPECT_EQ(result.Triangles[0].BoundaryEdges, 0b011); // 0-1, 1-2 boundary; 2-0 shared
+  EXPECT_EQ(result.Triangles[1].BoundaryEdges, 0b110); // 0-2 shared; 2-3, 3-0 boundary
+  EXPECT_EQ(result.Triangles[0].Padding[0], 0);
+}
+
+TEST_F(TriangleSources, ClosedMeshWithAHole)
+{
+  // A cube of 12 triangles is closed; without one triangle it has a 3-edge hole.
+  Mesh cube;
+  for (int k = 0; k < 8; ++k)
+  {
+    cube.Points.push_back({ double(k & 1), double((k >> 1) & 1), double((k >> 2) & 1) });
+  }
+  cube.Faces = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 }, { 2, 6, 7, 3 }, { 0, 4, 6, 2 },
+    { 1, 3, 7, 5 } };
+  EXPECT_EQ(this->Read(this->Write("cube.obj", ObjBytes(cube))).Stats.BoundaryEdges, 0u);
+  cube.Faces[0] = { 0, 2, 3 };
+  EXPECT_EQ(this->Read(this->Write("holed.obj", ObjBytes(cube))).Stats.BoundaryEdges, 3u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bad input
+
+TEST_F(TriangleSources, FileErrors)
+{
+  this->ExpectError(this->Path("missing.ply"), "cannot open");
+  this->ExpectError(this->Write("mesh.xyz", "hello"), "unsupported file type '.xyz'");
+  this->ExpectError(this->Write("noextension", "hello"), "unsupported file type");
+  fs::create_directory(this->Path("folder.obj"));
+  this->ExpectError(this->Path("folder.obj"), "not a regular file");
+  this->ExpectError(this->Path("missing.vtp"), "cannot open");
+}
+
+TEST_F(TriangleSources, BadPlyHeaders)
+{
+  const std::string v = "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+  const std::string f = "element face 1\nproperty list uchar int vertex_indices\n";
+  this->ExpectError(this->Write("a.ply", ""), "bad PLY header");
+  this->ExpectError(
+    this->Write("b.ply", "PLY\nformat ascii 1.0\nend_header\n"), "does not start with 'ply'");
+  this->ExpectError(this->Write("c.ply", "ply\nformat ascii 1.0\n" + v + f), "no end_header");
+  this->ExpectError(
+    this->Write("d.ply", "ply\nformat xml 1.0\n" + v + f + "end_header\n"), "unknown format 'xml'");
+  this->ExpectError(this->Write("e.ply", "ply\n" + v + f + "end_header\n"), "no format line");
+  this->ExpectError(this->Write("f.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n"),
+    "property before any element");
+  this->ExpectError(
+    this->Write("g.ply", "ply\nformat ascii 1.0\nelement vertex many\nend_header\n"),
+    "expected 'element <name> <count>'");
+  this->ExpectError(
+    this->Write("h.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty int64 x\nend_header\n"),
+    "unsupported PLY property type 'int64'");
+  this->ExpectError(
+    this->Write("i.ply", "ply\nformat ascii 1.0\n" + f + "end_header\n"), "no vertex element");
+  this->ExpectError(
+    this->Write("j.ply",
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n" + f +
+        "end_header\n"),
+    "no 'z' property");
+  this->ExpectError(this->Write("k.ply",
+                      "ply\nformat ascii 1.0\n" + v +
+                        "element face 1\nproperty list uchar int corners\nend_header\n"),
+    "no vertex_indices list");
+  this->ExpectError(this->Write("l.ply",
+                      "ply\nformat ascii 1.0\n" + v +
+                        "element face 1\nproperty list uchar float vertex_indices\nend_header\n"),
+    "must have an integer type");
+  this->ExpectError(
+    this->Write("m.ply", "ply\nformat ascii 1.0\nbogus line\nend_header\n"), "unexpected 'bogus'");
+  this->ExpectError(
+    this->Write(
+      "n.ply", std::string("ply\nformat binary_little_endian 1.0\n") + std::string(2 << 20, 'x')),
+    "no end_header");
+}
+
+TEST_F(TriangleSources, PlyDataErrors)
+{
+  const Mesh mesh = Grid(1, 1, false);
+  std::string bytes = PlyBytes(mesh);
+  this->ExpectError(this->Write("short.ply", bytes.substr(0, bytes.size() - 3)),
+    "truncated: face 1 of 2 ends past the end of the file");
+
+  Mesh nan = mesh;
+  nan.Points[2][1] = std::numeric_limits<double>::quiet_NaN();
+  this->ExpectError(
+    this->Write("nan.ply", PlyBytes(nan)), "vertex 2 has a non-finite coordinate (nan)");
+  PlyOptions ascii;
+  ascii.Format = "ascii";
+  this->ExpectError(this->Write("nan-ascii.ply", PlyBytes(nan, ascii)),
+    "vertex 2 has a non-finite coordinate (nan)");
+  Mesh huge = mesh;
+  huge.Points[1][0] = 1e300;
+  PlyOptions doubles;
+  doubles.CoordinateType = "double";
+  this->ExpectError(
+    this->Write("huge.ply", PlyBytes(huge, doubles)), "vertex 1 has a non-finite coordinate (inf)");
+
+  Mesh outOfRange = mesh;
+  outOfRange.Faces[1][2] = 9;
+  this->ExpectError(this->Write("range.ply", PlyBytes(outOfRange)),
+    "face 1 has vertex index 9, out of range (file has 4 vertices)");
+  outOfRange.Faces[1][2] = -1;
+  this->ExpectError(
+    this->Write("negative.ply", PlyBytes(outOfRange)), "face 1 has vertex index -1");
+
+  this->ExpectError(
+    this->Write("word.ply",
+      "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+      "property float z\nend_header\n0 zero 0\n"),
+    "line 8: expected a number, found 'zero'");
+  this->ExpectError(
+    this->Write("count.ply",
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list int int vertex_indices\n"
+      "end_header\n0 0 0\n1 0 0\n0 1 0\n-3 0 1 2\n"),
+    "face 0 has a list of negative length -3");
+  this->ExpectError(
+    this->Write("corners.ply",
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list int int vertex_indices\n"
+      "end_header\n0 0 0\n1 0 0\n0 1 0\n100000000 0 1 2\n"),
+    "face 0 has 100000000 corners");
+}
+
+TEST_F(TriangleSources, PlyHeaderClaimsAreCheckedBeforeAllocating)
+{
+  const std::string v = "property float x\nproperty float y\nproperty float z\n";
+  const std::string f = "element face 1\nproperty list uchar int vertex_indices\n";
+  this->ExpectError(this->Write("billions.ply",
+                      "ply\nformat binary_little_endian 1.0\nelement vertex 3000000000\n" + v + f +
+                        "end_header\n" + std::string(100, '\0')),
+    "the header claims 3000000000 vertices but only 100 bytes are left in the file");
+  this->ExpectError(
+    this->Write("billions-ascii.ply",
+      "ply\nformat ascii 1.0\nelement vertex 3000000000\n" + v + f + "end_header\n0 0 0\n"),
+    "claims 3000000000 vertices");
+  this->ExpectError(
+    this->Write("too-many.ply",
+      "ply\nformat binary_little_endian 1.0\nelement vertex 5000000000\n" + v + f + "end_header\n"),
+    "too many vertices (5000000000; at most 4294967295 are supported)");
+  this->ExpectError(this->Write("faces.ply",
+                      "ply\nformat binary_little_endian 1.0\nelement vertex 3\n" + v +
+                        "element face 4000000000\nproperty list uchar int vertex_indices\n"
+                        "end_header\n" +
+                        std::string(36, '\0')),
+    "truncated: face 0 of 4000000000 ends past the end of the file");
+  this->ExpectError(
+    this->Write("other.ply",
+      "ply\nformat binary_little_endian 1.0\nelement junk 999999999999\nproperty double a\n"
+      "element vertex 3\n" +
+        v + f + "end_header\n" + std::string(64, '\0')),
+    "the header claims 999999999999 'junk' records");
+}
+
+TEST_F(TriangleSources, EmptyMeshes)
+{
+  Mesh noFaces = Grid(1, 1, false);
+  noFaces.Faces.clear();
+  this->ExpectError(this->Write("nofaces.ply", PlyBytes(noFaces)), "empty mesh (no triangles");
+  this->ExpectError(
+    this->Write("noface-element.ply",
+      "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+      "property float z\nend_header\n1 2 3\n"),
+    "empty mesh (no triangles: the file has no faces)");
+  Mesh degenerate;
+  degenerate.Points = { { 0, 0, 0 }, { 1, 1, 1 }, { 2, 2, 2 } };
+  degenerate.Faces = { { 0, 1, 2 }, { 0, 0, 1 } };
+  this->ExpectError(this->Write("flat.ply", PlyBytes(degenerate)),
+    "empty mesh (no triangles: all 2 are degenerate)");
+  this->ExpectError(this->Write("empty.obj", "# nothing\n"), "empty mesh (no triangles");
+  this->ExpectError(
+    this->Write("empty.stl", BinaryStlBytes(Mesh(), "binary")), "empty mesh (no triangles");
+  this->ExpectError(
+    this->Write("empty-ascii.stl", "solid x\nendsolid x\n"), "empty mesh (no triangles");
+  this->ExpectError(this->Write("flat.obj", ObjBytes(degenerate)), "empty mesh");
+}
+
+TEST_F(TriangleSources, ObjErrors)
+{
+  const std::string square = "v 0 0 0\nv 1 0 0\nv 1 1 0\n";
+  this->ExpectError(this->Write("range.obj", square + "f 1 2 3\n\nf 1 2 99\n"),
+    "range.obj line 6: face index 99 out of range (file has 3 vertices)");
+  this->ExpectError(
+    this->Write("zero.obj", square + "f 0 1 2\n"), "line 4: face index 0 out of range");
+  this->ExpectError(this->Write("relative.obj", "v 0 0 0\nf -1 -2 -3\n" + square),
+    "line 2: face index -2 out of range (file has 4 vertices, 1 before this line)");
+  this->ExpectError(
+    this->Write("corner.obj", square + "f 1 2 x3\n"), "line 4: bad face corner 'x3'");
+  this->ExpectError(this->Write("slash.obj", square + "f 1 2 3x/1\n"), "bad face corner '3x/1'");
+  this->ExpectError(
+    this->Write("short.obj", "v 0 0\n"), "line 1: a vertex needs three coordinates");
+  this->ExpectError(
+    this->Write("word.obj", "v 0 zero 0\n"), "line 1: expected a coordinate, found 'zero'");
+  this->ExpectError(
+    this->Write("nan.obj", square + "v 0 nan 0\nf 1 2 3\n"), "line 4: non-finite coordinate (nan)");
+  this->ExpectError(this->Write("long.obj", "v 0 0 0\n# " + std::string(5 << 20, 'x') + "\n"),
+    "line 2: line longer than");
+}
+
+TEST_F(TriangleSources, StlErrors)
+{
+  const Mesh mesh = Tetrahedron();
+  std::string binary = BinaryStlBytes(mesh, "binary");
+  this->ExpectError(this->Write("cut.stl", binary.substr(0, binary.size() - 10)),
+    "truncated or corrupt binary STL: the header claims 4 triangles (284 bytes) but the file has "
+    "274 bytes");
+  this->ExpectError(this->Write("tiny.stl", "abc"), "not an STL file");
+  std::string solidCut = BinaryStlBytes(mesh, "solid but binary");
+  this->ExpectError(this->Write("solidcut.stl", solidCut.substr(0, solidCut.size() - 1)),
+    "truncated or corrupt binary STL");
+  Mesh nan = mesh;
+  nan.Points[1][0] = std::numeric_limits<double>::quiet_NaN();
+  this->ExpectError(this->Write("nan.stl", BinaryStlBytes(nan, "x")),
+    "triangle 0 has a non-finite coordinate (nan)");
+  this->ExpectError(
+    this->Write("word.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 zero\n"),
+    "word.stl line 4: expected a coordinate, found 'zero'");
+  this->ExpectError(
+    this->Write("open.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"),
+    "truncated: the file ends inside a facet");
+  this->ExpectError(
+    this->Write("cutvertex.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0"),
+    "truncated: the file ends inside a vertex");
+}
+
+TEST_F(TriangleSources, VtpErrors)
+{
+  this->ExpectError(
+    this->Write("junk.vtp", "this is not xml"), "not a readable VTK XML PolyData file");
+  this->ExpectError(this->Write("other.vtp",
+                      "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"0.1\">\n"
+                      "<ImageData WholeExtent=\"0 1 0 1 0 1\"/></VTKFile>\n"),
+    "not a readable VTK XML PolyData file");
+}
+
+TEST_F(TriangleSources, BinaryPlyTruncatedAnywhereIsAnInputError)
+{
+  Mesh mesh = Grid(2, 1, true);
+  PlyOptions options;
+  options.ExtraProperties = true;
+  options.ExtraElement = true;
+  for (bool inPlace : { true, false })
+  {
+    options.CoordinateType = inPlace ? "float" : "double";
+    const std::string bytes = PlyBytes(mesh, options);
+    ASSERT_NO_THROW(this->Read(this->Write("whole.ply", bytes)));
+    for (std::size_t length = 0; length < bytes.size(); ++length)
+    {
+      const std::string path = this->Write("cut.ply", bytes.substr(0, length));
+      EXPECT_THROW(this->Read(path), atp::InputError) << "length " << length;
+    }
+  }
+}
+
+TEST_F(TriangleSources, BinaryStlTruncatedAnywhereIsAnInputError)
+{
+  const std::string bytes = BinaryStlBytes(Tetrahedron(), "solid looks like text");
+  for (std::size_t length = 0; length < bytes.size(); ++length)
+  {
+    EXPECT_THROW(this->Read(this->Write("cut.stl", bytes.substr(0, length))), atp::InputError)
+      << "length " << length;
+  }
+}
+
+TEST_F(TriangleSources, GarbageNeverCrashes)
+{
+  // Random bytes after valid headers: errors, never crashes or hangs.
+  std::uint32_t state = 12345;
+  auto next = [&]()
+  {
+    state = state * 1664525u + 1013904223u;
+    return char(state >> 24);
+  };
+  const std::string header =
+    "ply\nformat binary_big_endian 1.0\nelement vertex 20\nproperty float x\n"
+    "property float y\nproperty float z\nelement face 30\n"
+    "property list uchar uint vertex_indices\nend_header\n";
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    std::string bytes = header;
+    const int length = 200 + trial * 3;
+    for (int i = 0; i < length; ++i)
+    {
+      bytes += next();
+    }
+    const std::string path = this->Write("garbage.ply", bytes);
+    try
+    {
+      this->Read(path);
+    }
+    catch (const atp::InputError&)
+    {
+    }
+  }
+}
+} // namespace
