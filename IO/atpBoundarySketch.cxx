@@ -1,11 +1,18 @@
 #include "atpBoundarySketch.h"
 
+#include "atpResidentPages.h"
+
 namespace atp
 {
 
 BoundarySketch::BoundarySketch(std::uint64_t vertexCount, const std::string& scratchDirectory)
   : Entries(scratchDirectory, static_cast<std::size_t>(vertexCount))
 {
+}
+
+void BoundarySketch::ReleaseResidentPages() const
+{
+  atp::ReleaseResidentPages(this->Entries.Data(), this->Entries.Size() * sizeof(Entry));
 }
 
 } // namespace atp

@@ -41,6 +41,9 @@ public:
     return this->EndPasses(u, v) && this->EndPasses(v, u);
   }
 
+  /// Lets the sketch's pages leave resident memory (they stay in its scratch file).
+  void ReleaseResidentPages() const;
+
 private:
   struct Entry
   {

@@ -1,5 +1,7 @@
 #include "atpMeshTriangleSource.h"
 
+#include "atpResidentPages.h"
+
 #include <cmath>
 #include <cstring>
 
@@ -88,6 +90,7 @@ void MeshTriangleSource::BuildSketch()
     float corners[3][3];
     while (this->Fans.Next(triangle))
     {
+      this->BoundResidentMemory();
       if (this->Keep(triangle, corners))
       {
         this->Sketch.AddTriangle(triangle[0], triangle[1], triangle[2]);
@@ -109,6 +112,21 @@ void MeshTriangleSource::BuildSketch()
   }
   this->Mesh->Rewind();
   this->Fans.Reset(PolygonBatch());
+}
+
+void MeshTriangleSource::BoundResidentMemory()
+{
+  constexpr std::uint64_t ReleaseInterval = std::uint64_t(1) << 22;
+  if (++this->VisitedSinceRelease < ReleaseInterval)
+  {
+    return;
+  }
+  this->VisitedSinceRelease = 0;
+  if (this->Vertices.FileBacked)
+  {
+    ReleaseResidentPages(this->Vertices.Base, this->Vertices.Count * this->Vertices.Stride);
+  }
+  this->Sketch.ReleaseResidentPages();
 }
 
 bool MeshTriangleSource::StartNextBatch()
@@ -137,6 +155,7 @@ std::size_t MeshTriangleSource::Read(SoupTriangle* out, std::size_t max)
       }
       continue;
     }
+    this->BoundResidentMemory();
     SoupTriangle& soup = out[n];
     if (!this->Keep(triangle, soup.V))
     {

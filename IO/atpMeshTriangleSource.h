@@ -34,6 +34,9 @@ private:
   /// Gets the corner positions; false for a degenerate triangle.
   bool Keep(const std::uint32_t triangle[3], float corners[3][3]) const;
   bool StartNextBatch();
+  /// Called per triangle visited: every few million, releases the resident pages of the
+  /// vertex array and the sketch, so a mesh of any size streams in bounded memory.
+  void BoundResidentMemory();
 
   std::string Path;
   std::unique_ptr<PolygonMesh> Mesh;
@@ -44,6 +47,7 @@ private:
   std::uint64_t KeptTriangles = 0;
   FanCursor Fans;
   bool FacesDone = false;
+  std::uint64_t VisitedSinceRelease = 0;
 };
 
 } // namespace atp

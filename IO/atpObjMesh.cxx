@@ -44,6 +44,7 @@ public:
     VertexView view;
     view.Base = reinterpret_cast<const unsigned char*>(this->Positions.Data());
     view.Count = this->VertexCount;
+    view.FileBacked = true;
     return view;
   }
 

@@ -554,6 +554,7 @@ void PlyMesh::ReadVertexElement(const PlyElement& element, const std::string& sc
 {
   this->CheckClaimedCount(element, "vertices");
   this->View.Count = element.Count;
+  this->View.FileBacked = true; // mapped in place from the input, or copied to a ScratchArray
   if (this->ReadVerticesInPlace(element))
   {
     return;

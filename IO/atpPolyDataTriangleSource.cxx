@@ -37,7 +37,7 @@ public:
       mesh->GetPoint(i, p);
       for (int k = 0; k < 3; ++k)
       {
-        this->Positions[std::size_t(3 * i + k)] = float(p[k]);
+        this->Positions[std::size_t(3 * i + k)] = ToFloatCoordinate(p[k]);
       }
     }
     this->Rewind();

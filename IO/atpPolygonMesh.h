@@ -26,6 +26,9 @@ struct VertexView
   const unsigned char* Base = nullptr;
   std::size_t Stride = 3 * sizeof(float);
   std::uint64_t Count = 0;
+  /// The positions are in a file-backed mapping, whose pages may be released (and come back
+  /// from the file) to bound resident memory; false for heap arrays.
+  bool FileBacked = false;
 
   void Get(std::uint32_t i, float p[3]) const
   {
