@@ -11,6 +11,7 @@
 #include "vtkNew.h"
 
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <sys/resource.h>
@@ -162,6 +163,8 @@ int main(int argc, char** argv)
     PrintHelp();
     return argc < 2 ? 2 : 0;
   }
+  // A file size limit (ulimit -f) must fail the write with an error we report, not kill us.
+  std::signal(SIGXFSZ, SIG_IGN);
   const std::string command = argv[1];
   try
   {

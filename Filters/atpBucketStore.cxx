@@ -13,12 +13,21 @@ BucketStore::BucketStore(const std::string& scratchDirectory, std::size_t memory
   // At least a handful of frames so that a split (one bucket read, two appended) always fits.
   const std::size_t frames = std::max<std::size_t>(8, memoryBudgetBytes / PageBytes);
   Pool.reset(new SoupTriangle[frames * PageRecords]);
+  States.assign(frames, FrameState::Free);
   FramePage.assign(frames, -1);
   FrameDirty.assign(frames, 0);
   FrameReferenced.assign(frames, 0);
   for (std::size_t f = frames; f-- > 0;)
   {
     FreeFrames.push_back(f);
+  }
+}
+
+BucketStore::~BucketStore()
+{
+  if (InFlight.Done.valid())
+  {
+    InFlight.Done.wait();
   }
 }
 
@@ -35,41 +44,105 @@ BucketStore::PageIndex BucketStore::NewPage()
   return PageIndex(PageFrame.size() - 1);
 }
 
-std::size_t BucketStore::FreeFrame()
+void BucketStore::FinishWrites()
 {
-  if (!FreeFrames.empty())
+  if (!InFlight.Done.valid())
   {
-    const std::size_t frame = FreeFrames.back();
-    FreeFrames.pop_back();
-    return frame;
+    return;
   }
-  // Clock (second chance) eviction: cheap and close to LRU.
-  for (;;)
+  InFlight.Done.get(); // rethrows a write error (disk full)
+  for (const auto& [frame, page] : InFlight.Frames)
   {
+    // A page cleared meanwhile no longer maps to this frame: only the frame is freed.
+    if (PageFrame[page] == std::int32_t(frame))
+    {
+      PageFrame[page] = NotResident;
+      PageOnDisk[page] = 1;
+    }
+    States[frame] = FrameState::Free;
+    FramePage[frame] = -1;
+    FreeFrames.push_back(frame);
+  }
+  InFlight.Frames.clear();
+}
+
+void BucketStore::StartEvictions()
+{
+  // An eighth of the pool per batch: large sequential-ish writes, while the other frames
+  // keep taking appends.
+  const std::size_t frames = FramePage.size();
+  const std::size_t wanted = std::max<std::size_t>(1, frames / 8);
+  std::size_t found = 0;
+  for (std::size_t step = 0; step < 2 * frames && found < wanted; ++step)
+  {
+    // Clock (second chance): skip recently used frames once, clearing their bit.
     const std::size_t frame = ClockHand;
-    ClockHand = (ClockHand + 1) % FramePage.size();
+    ClockHand = (ClockHand + 1) % frames;
+    if (States[frame] != FrameState::Resident)
+    {
+      continue;
+    }
     if (FrameReferenced[frame])
     {
       FrameReferenced[frame] = 0;
       continue;
     }
+    ++found;
     const PageIndex page = PageIndex(FramePage[frame]);
-    if (FrameDirty[frame])
+    if (!FrameDirty[frame])
     {
-      const std::uint64_t offset = std::uint64_t(page) * PageBytes;
-      Disk.WriteAt(offset, FrameData(frame), PageBytes);
-      Counters.BytesWritten += PageBytes;
-      Counters.PeakScratchBytes = std::max(Counters.PeakScratchBytes, offset + PageBytes);
-      PageOnDisk[page] = 1;
+      PageFrame[page] = NotResident;
+      States[frame] = FrameState::Free;
+      FramePage[frame] = -1;
+      FreeFrames.push_back(frame);
+      continue;
     }
-    PageFrame[page] = NotResident;
-    FramePage[frame] = -1;
-    return frame;
+    States[frame] = FrameState::Writing;
+    FrameDirty[frame] = 0;
+    InFlight.Frames.emplace_back(frame, page);
+    const std::uint64_t end = (std::uint64_t(page) + 1) * PageBytes;
+    Counters.BytesWritten += PageBytes;
+    Counters.PeakScratchBytes = std::max(Counters.PeakScratchBytes, end);
   }
+  if (!InFlight.Frames.empty())
+  {
+    std::sort(InFlight.Frames.begin(), InFlight.Frames.end(),
+      [](const auto& a, const auto& b) { return a.second < b.second; }); // file order
+    InFlight.Done = std::async(std::launch::async, [this, batch = InFlight.Frames] {
+      for (const auto& [frame, page] : batch)
+      {
+        Disk.WriteAt(std::uint64_t(page) * PageBytes, FrameData(frame), PageBytes);
+      }
+    });
+  }
+}
+
+std::size_t BucketStore::FreeFrame()
+{
+  // Keep a batch of writes ahead of need, so appends rarely wait for the disk.
+  if (!InFlight.Done.valid() && FreeFrames.size() < std::max<std::size_t>(1, FramePage.size() / 8))
+  {
+    StartEvictions();
+  }
+  while (FreeFrames.empty())
+  {
+    FinishWrites();
+    if (FreeFrames.empty())
+    {
+      StartEvictions();
+    }
+  }
+  const std::size_t frame = FreeFrames.back();
+  FreeFrames.pop_back();
+  return frame;
 }
 
 std::size_t BucketStore::Resident(PageIndex page, bool load)
 {
+  if (PageFrame[page] != NotResident && States[std::size_t(PageFrame[page])] == FrameState::Writing)
+  {
+    FinishWrites(); // the writer may still be reading the frame: let it finish first
+  }
   if (PageFrame[page] != NotResident)
   {
     return std::size_t(PageFrame[page]);
@@ -80,6 +153,7 @@ std::size_t BucketStore::Resident(PageIndex page, bool load)
     Disk.ReadAt(std::uint64_t(page) * PageBytes, FrameData(frame), PageBytes);
     Counters.BytesRead += PageBytes;
   }
+  States[frame] = FrameState::Resident;
   FramePage[frame] = page;
   FrameDirty[frame] = 0;
   PageFrame[page] = std::int32_t(frame);
@@ -126,8 +200,8 @@ void BucketStore::Read(BucketIndex bucketIndex, std::vector<SoupTriangle>& out) 
     const std::size_t n = std::size_t(std::min<std::uint64_t>(left, PageRecords));
     if (PageFrame[page] != NotResident)
     {
-      std::memcpy(&out[first], &Pool[std::size_t(PageFrame[page]) * PageRecords],
-        n * sizeof(SoupTriangle));
+      // Also for a frame being written: the writer only reads it too.
+      std::memcpy(&out[first], FrameData(std::size_t(PageFrame[page])), n * sizeof(SoupTriangle));
     }
     else
     {
@@ -151,10 +225,15 @@ void BucketStore::Clear(BucketIndex bucketIndex)
     if (PageFrame[page] != NotResident)
     {
       const std::size_t frame = std::size_t(PageFrame[page]);
-      FramePage[frame] = -1;
-      FrameDirty[frame] = 0;
-      FrameReferenced[frame] = 0;
-      FreeFrames.push_back(frame);
+      if (States[frame] == FrameState::Resident)
+      {
+        States[frame] = FrameState::Free;
+        FramePage[frame] = -1;
+        FrameDirty[frame] = 0;
+        FrameReferenced[frame] = 0;
+        FreeFrames.push_back(frame);
+      }
+      // A frame being written is freed when its batch finishes.
       PageFrame[page] = NotResident;
     }
     PageOnDisk[page] = 0;

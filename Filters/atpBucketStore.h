@@ -1,7 +1,8 @@
 // Triangle buckets kept on disk behind a fixed pool of in-memory pages, so partitioning any
 // number of triangles needs the same memory (paper 5.1: "triangle buckets are stored in
 // secondary memory"). Pages of deleted buckets are reused, so the scratch file stays about the
-// size of the live triangles.
+// size of the live triangles. Evicted pages are written in batches by a background thread
+// while the caller goes on filling other pages.
 #ifndef atpBucketStore_h
 #define atpBucketStore_h
 
@@ -10,6 +11,7 @@
 #include "vtkATPFiltersModule.h"
 
 #include <cstdint>
+#include <future>
 #include <memory>
 #include <vector>
 
@@ -31,7 +33,10 @@ public:
   static constexpr std::size_t PageRecords = 512;
 
   BucketStore(const std::string& scratchDirectory, std::size_t memoryBudgetBytes);
+  /// Waits for the background writes (their errors are lost: the store is going away).
+  ~BucketStore();
 
+  /// Throws std::runtime_error when the scratch file cannot be written (disk full).
   void Append(BucketIndex bucket, const SoupTriangle& triangle);
   std::uint64_t Count(BucketIndex bucket) const
   {
@@ -55,18 +60,37 @@ private:
     std::vector<PageIndex> Pages;
     std::uint64_t Count = 0;
   };
+  enum class FrameState : char
+  {
+    Free,
+    Resident,
+    Writing ///< content valid and readable, being written by the background thread
+  };
+  struct WriteBatch
+  {
+    std::vector<std::pair<std::size_t, PageIndex>> Frames; // frame, page
+    std::future<void> Done;
+  };
 
   PageIndex NewPage();
-  /// Frame holding `page`, reading it back from disk when `load` and it was evicted.
+  /// Frame holding `page` for writing into it; reads it back from disk when `load` and it
+  /// was evicted.
   std::size_t Resident(PageIndex page, bool load);
   std::size_t FreeFrame();
-  SoupTriangle* FrameData(std::size_t frame) { return &Pool[frame * PageRecords]; }
+  /// Picks not recently used frames: clean ones are freed now, dirty ones go to a new
+  /// background write batch.
+  void StartEvictions();
+  /// Waits for the batch in flight, if any, and frees its frames.
+  void FinishWrites();
+  SoupTriangle* FrameData(std::size_t frame) const { return &Pool[frame * PageRecords]; }
 
   ScratchFile Disk;
   std::vector<Bucket> Buckets;
   // Default-initialized: pages of the pool cost memory only once they are used.
   std::unique_ptr<SoupTriangle[]> Pool;
-  // Per frame: the page it holds (or none), whether it changed since loaded, clock bit.
+  // Per frame: its state, the page it holds (or none), whether it changed since loaded, and
+  // the clock's reference bit.
+  std::vector<FrameState> States;
   std::vector<std::int64_t> FramePage;
   std::vector<char> FrameDirty, FrameReferenced;
   std::vector<std::size_t> FreeFrames;
@@ -75,6 +99,7 @@ private:
   std::vector<std::int32_t> PageFrame;
   std::vector<char> PageOnDisk;
   std::vector<PageIndex> FreePages;
+  WriteBatch InFlight;
   mutable BucketStoreStats Counters; // reads count too
 };
 

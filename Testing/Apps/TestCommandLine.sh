@@ -51,6 +51,10 @@ printf 'ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty floa
 expect 1 "empty.ply.*empty" -- "$atp" build "$work/empty.ply" -o "$work/x.atp"
 expect 1 "scratch" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/x.atp" --scratch "$work/no/such/dir"
 
+# A full scratch disk (a file size limit stands in for it): an error, not a crash.
+expect 1 "cannot write scratch data.*(File too large|No space)" -- bash -c "ulimit -f 2048; exec '$atp' build '$data/bumpy-torus.ply' -o '$work/x.atp' --bucket-memory 1 --scratch '$work' --quiet"
+[ -z "$(ls "$work" | grep -v -E '\.(ply)$')" ] || { echo "FAIL: files left in the scratch directory: $(ls "$work")"; failures=$((failures + 1)); }
+
 # The generator writes a mesh the builder reads back, and never a partial file.
 expect 0 "wrote .*g.ply: [0-9]+ triangles" -- "$atp" generate -n 5000 --holes 2 -o "$work/g.ply"
 expect 0 "boundary edges" -- "$atp" build "$work/g.ply" -o "$work/g.atp" --quiet

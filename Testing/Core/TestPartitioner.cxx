@@ -1,10 +1,13 @@
 // Out-of-core partitioning: bucket pages on disk, leaf capacity, conformity, nothing lost.
 #include "ConformityCheck.h"
 #include "atpPartitioner.h"
+#include "atpStreamPartition.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <csignal>
+#include <sys/resource.h>
 #include <cstring>
 #include <map>
 #include <random>
@@ -185,4 +188,103 @@ TEST(Partitioner, IsDeterministic)
     ASSERT_EQ(a.Forest()[n].Id, b.Forest()[n].Id);
     ASSERT_EQ(a.TriangleCount(n), b.TriangleCount(n));
   }
+}
+
+namespace
+{
+/// Triangles from memory, as a TriangleSource.
+class VectorSource final : public TriangleSource
+{
+public:
+  explicit VectorSource(std::vector<SoupTriangle> triangles)
+    : Triangles(std::move(triangles))
+    , Bounds_(BoxOf(Triangles))
+  {
+  }
+  Box Bounds() const override { return Bounds_; }
+  std::uint64_t ExpectedTriangles() const override { return Triangles.size(); }
+  std::size_t Read(SoupTriangle* out, std::size_t max) override
+  {
+    const std::size_t n = std::min(max, Triangles.size() - Next);
+    std::copy_n(Triangles.begin() + std::ptrdiff_t(Next), n, out);
+    Next += n;
+    if (Next >= FailAfter)
+    {
+      throw InputError("test.ply: truncated");
+    }
+    return n;
+  }
+  const InputStats& Stats() const override { return Counts; }
+
+  std::size_t FailAfter = SIZE_MAX;
+
+private:
+  std::vector<SoupTriangle> Triangles;
+  Box Bounds_;
+  std::size_t Next = 0;
+  InputStats Counts;
+};
+} // namespace
+
+TEST(PartitionStream, OverlapsReadingAndGivesTheSameForest)
+{
+  const auto soup = RandomSoup(3, 300000);
+  PartitionOptions options;
+  options.LeafCapacity = 400;
+  VectorSource source(soup);
+  std::uint64_t lastProgress = 0;
+  auto streamed = PartitionStream(source, options, [&](std::uint64_t done) {
+    EXPECT_GT(done, lastProgress);
+    lastProgress = done;
+  });
+  EXPECT_EQ(lastProgress, soup.size());
+  Partitioner direct(BoxOf(soup), options);
+  direct.Insert(soup.data(), soup.size());
+  ASSERT_EQ(streamed->Forest().Size(), direct.Forest().Size());
+  EXPECT_EQ(streamed->Stats().Leaves, direct.Stats().Leaves);
+}
+
+TEST(PartitionStream, ReaderErrorsReachTheCaller)
+{
+  VectorSource source(RandomSoup(4, 200000));
+  source.FailAfter = 100000;
+  EXPECT_THROW(PartitionStream(source, PartitionOptions(), [](std::uint64_t) {}), InputError);
+}
+
+TEST(PartitionStream, CancelledByTheCallerJoinsTheReader)
+{
+  VectorSource source(RandomSoup(5, 400000));
+  EXPECT_THROW(PartitionStream(source, PartitionOptions(),
+                 [](std::uint64_t done) {
+                   if (done > 70000)
+                   {
+                     throw std::runtime_error("cancelled");
+                   }
+                 }),
+    std::runtime_error);
+}
+
+TEST(PartitionStream, AFullScratchDiskIsAnErrorNotACrash)
+{
+  // A file size limit makes the scratch file's writes fail as on a full disk.
+  std::signal(SIGXFSZ, SIG_IGN);
+  rlimit saved{};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &saved), 0);
+  rlimit small = saved;
+  small.rlim_cur = 1 << 20;
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+  VectorSource source(RandomSoup(6, 200000)); // 8 MB of triangles
+  PartitionOptions options;
+  options.BucketMemoryBytes = 1; // everything goes to the scratch file
+  try
+  {
+    PartitionStream(source, options, [](std::uint64_t) {});
+    ADD_FAILURE() << "no error although the scratch file could not grow";
+  }
+  catch (const std::runtime_error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("cannot write scratch data"), std::string::npos)
+      << e.what();
+  }
+  ::setrlimit(RLIMIT_FSIZE, &saved);
 }
