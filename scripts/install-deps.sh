@@ -9,6 +9,7 @@ packages=(
   libcgal-dev            # minimum enclosing balls (Min_sphere_of_spheres_d)
   libtet1.5-dev          # TetGen: conformity checks in tests
   libmeshoptimizer-dev   # vertex-cache order, index/vertex codecs
+  libxxhash-dev          # patch and section checksums (XXH3)
   libopenmpi-dev openmpi-bin   # VTK 9.1 on Debian links MPI; distributed build
   xvfb xauth             # headless rendering for tests
   mricron-data           # real MRI volumes for the brain isosurface benchmark
