@@ -1,5 +1,7 @@
 // atp: the command line of Adaptive TetraPuzzles for VTK.
 #include "atpCommandLine.h"
+#include "atpConstruction.h"
+#include "atpModelCommands.h"
 #include "atpPartitioner.h"
 #include "atpProgressReport.h"
 #include "atpSurfaceGenerator.h"
@@ -37,14 +39,18 @@ std::vector<std::string> Rest(int argc, char** argv)
 int Build(int argc, char** argv)
 {
   CommandLine cl("build",
-    "Builds a multiresolution model from a triangle mesh (PLY, OBJ, STL, VTP), streaming it\n"
-    "from disk. This version runs the partitioning phase: triangles are sorted into a forest\n"
-    "of tetrahedra (6 roots, longest-edge bisection, diamonds split whole) with buckets on\n"
-    "disk, and the figures are reported. Writing the .atp model comes with the simplification\n"
-    "phase; until then OUT is not written.");
+    "Builds a multiresolution model (.atp) from a triangle mesh (PLY, OBJ, STL, VTP), streaming\n"
+    "it from disk: triangles are sorted into a forest of tetrahedra (6 roots, longest-edge\n"
+    "bisection, diamonds split whole) with buckets on disk, then every diamond, bottom-up,\n"
+    "simplifies its children's patches with its external boundary locked, and the patches are\n"
+    "encoded into OUT. OUT appears only when complete; an existing OUT is replaced atomically.");
   cl.AddPositional("INPUT", "mesh file: .ply (ASCII or binary), .obj, .stl, .vtp");
   cl.AddOption("output", "o", "OUT.atp", "model file to write");
   cl.AddOption("leaf-capacity", "", "N", "most triangles in a leaf tetrahedron", "4000");
+  cl.AddOption("patch-budget", "", "N", "most triangles in a tetrahedron of a simplified level",
+    "2000");
+  cl.AddOption("threads", "j", "N", "worker threads (the model is identical for any count)",
+    "every core");
   cl.AddOption("bucket-memory", "", "MiB", "memory for in-memory triangle buckets", "256");
   cl.AddOption("scratch", "", "DIR", "directory for temporary files", "$TMPDIR or /tmp");
   cl.AddFlag("quiet", "no progress output, only the summary");
@@ -58,8 +64,14 @@ int Build(int argc, char** argv)
   }
 
   vtkNew<vtkATPBuilder> builder;
-  builder->SetFileName(cl.Positional(0).c_str());
+  builder->SetInputFileName(cl.Positional(0).c_str());
+  builder->SetFileName(cl.Get("output").c_str());
   builder->SetLeafCapacity(int(cl.GetInteger("leaf-capacity", 1, 1 << 30)));
+  builder->SetPatchBudget(int(cl.GetInteger("patch-budget", 16, 1 << 20)));
+  if (cl.Has("threads"))
+  {
+    builder->SetNumberOfThreads(int(cl.GetInteger("threads", 1, 1024)));
+  }
   builder->SetBucketMemoryMiB(int(cl.GetInteger("bucket-memory", 1, 1 << 20)));
   if (cl.Has("scratch"))
   {
@@ -69,12 +81,21 @@ int Build(int argc, char** argv)
   // Errors are reported once, by us, not also by VTK's output window.
   vtkNew<vtkCallbackCommand> swallowErrors;
   builder->AddObserver(vtkCommand::ErrorEvent, swallowErrors);
-  atp::ProgressReport progress("partitioning", 0, "triangles");
+  atp::ProgressReport progress("building", 0, "triangles");
   vtkNew<vtkCallbackCommand> onProgress;
   onProgress->SetClientData(&progress);
   onProgress->SetCallback([](vtkObject* caller, unsigned long, void* client, void* call) {
     auto* report = static_cast<atp::ProgressReport*>(client);
-    report->SetTotal(static_cast<vtkATPBuilder*>(caller)->GetExpectedTriangles());
+    auto* running = static_cast<vtkATPBuilder*>(caller);
+    if (*running->GetErrorMessage())
+    {
+      return; // VTK ends every run at 100%, failed ones too
+    }
+    report->SetTotal(running->GetExpectedTriangles());
+    if (running->GetProgressText())
+    {
+      report->SetTask(running->GetProgressText());
+    }
     report->Update(*static_cast<double*>(call));
   });
   if (!cl.Has("quiet"))
@@ -100,20 +121,31 @@ int Build(int argc, char** argv)
     FormatCount(double(in.TrianglesEmitted)).c_str(),
     static_cast<unsigned long long>(in.DegenerateDropped),
     static_cast<unsigned long long>(in.BoundaryEdges));
+  const double partitionSeconds = builder->GetPartitionSeconds();
   std::printf("partition: %llu leaves (%llu holding triangles, largest %llu), depth %d, %llu "
-              "tetrahedra split, %llu overfull at the deepest level\n",
+              "tetrahedra split, %llu overfull at the deepest level, %.2fs (%s triangles/s)\n",
     static_cast<unsigned long long>(p.Leaves), static_cast<unsigned long long>(p.NonEmptyLeaves),
     static_cast<unsigned long long>(p.LargestLeaf), p.Depth,
     static_cast<unsigned long long>(p.TetrahedraSplit),
-    static_cast<unsigned long long>(p.OverfullLeaves));
+    static_cast<unsigned long long>(p.OverfullLeaves), partitionSeconds,
+    FormatCount(double(p.Triangles) / std::max(partitionSeconds, 1e-9)).c_str());
   std::printf("buckets: %.1f MiB written to scratch, %.1f MiB read back, scratch peak %.1f MiB\n",
     double(p.Buckets.BytesWritten) / (1 << 20), double(p.Buckets.BytesRead) / (1 << 20),
     double(p.Buckets.PeakScratchBytes) / (1 << 20));
-  std::printf("done: %s triangles in %s (%.2fs), %s triangles/s, peak memory %.0f MiB\n",
-    FormatCount(double(p.Triangles)).c_str(), FormatDuration(seconds).c_str(), seconds,
+  const atp::ConstructionStats& c = builder->GetConstructionStats();
+  std::printf("simplify: %llu diamonds, %s collapses, %llu over budget (locked), coarsest error "
+              "%.3g, %.2fs\n",
+    static_cast<unsigned long long>(c.Diamonds), FormatCount(double(c.Collapses)).c_str(),
+    static_cast<unsigned long long>(c.QuotaMisses), c.CoarsestError,
+    builder->GetConstructionSeconds());
+  std::printf("scratch: peak %.1f MiB of patches\n", double(c.PeakScratchBytes) / (1 << 20));
+  std::printf("done: %s: %s triangles, %llu nodes, %d levels, %.1f MiB, %.2f bytes/triangle, "
+              "%s (%.2fs), %s triangles/s, peak memory %.0f MiB\n",
+    cl.Get("output").c_str(), FormatCount(double(p.Triangles)).c_str(),
+    static_cast<unsigned long long>(c.Nodes), c.Depth + 1, double(c.FileBytes) / (1 << 20),
+    double(c.FileBytes) / double(std::max<std::uint64_t>(1, p.Triangles)),
+    FormatDuration(seconds).c_str(), seconds,
     FormatCount(double(p.Triangles) / std::max(seconds, 1e-9)).c_str(), PeakResidentMiB());
-  std::printf("note: %s not written: writing models arrives with the simplification phase\n",
-    cl.Get("output").c_str());
   return 0;
 }
 
@@ -150,7 +182,9 @@ void PrintHelp()
   std::cout << "usage: atp COMMAND [arguments] [options]\n\n"
                "Adaptive TetraPuzzles for VTK: multiresolution models of huge triangle meshes.\n\n"
                "commands:\n"
-               "  build      build a model from a mesh file (partitioning phase for now)\n"
+               "  build      build a model (.atp) from a mesh file\n"
+               "  info       describe a model (--json for machines)\n"
+               "  verify     check every checksum, invariant and patch of a model\n"
                "  generate   write a large test surface as binary PLY\n\n"
                "Run 'atp COMMAND --help' for the options of a command.\n";
 }
@@ -175,6 +209,14 @@ int main(int argc, char** argv)
     if (command == "generate")
     {
       return Generate(argc, argv);
+    }
+    if (command == "info")
+    {
+      return atp::InfoCommand(Rest(argc, argv));
+    }
+    if (command == "verify")
+    {
+      return atp::VerifyCommand(Rest(argc, argv));
     }
     std::fprintf(stderr, "atp: unknown command '%s' (see atp --help)\n", command.c_str());
     return 2;

@@ -18,6 +18,8 @@ public:
   void Update(double fraction);
   /// For tasks whose size is known only once they start.
   void SetTotal(std::uint64_t total) { Total = total; }
+  /// Names the current phase of the task.
+  void SetTask(const std::string& task) { Task = task; }
   /// Ends the bar line (terminal) or prints the last line.
   void Finish();
 

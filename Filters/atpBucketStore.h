@@ -29,8 +29,8 @@ class VTKATPFILTERS_EXPORT BucketStore
 {
 public:
   using BucketIndex = std::uint32_t;
-  // 512 records = 20 KiB = 5 file-system blocks: writes never touch a block partially.
-  static constexpr std::size_t PageRecords = 512;
+  // 1024 records = 52 KiB = 13 file-system blocks: writes never touch a block partially.
+  static constexpr std::size_t PageRecords = 1024;
 
   BucketStore(const std::string& scratchDirectory, std::size_t memoryBudgetBytes);
   /// Waits for the background writes (their errors are lost: the store is going away).

@@ -6,11 +6,11 @@ namespace atp
 {
 
 Partitioner::Partitioner(const Box& bounds, const PartitionOptions& options)
-  : Options(options)
+  : Settings(options)
   , Lattice(bounds.Min.data(), bounds.Max.data())
   , Buckets(options.ScratchDirectory, options.BucketMemoryBytes)
 {
-  Options.LeafCapacity = std::max<std::uint32_t>(1, Options.LeafCapacity);
+  Settings.LeafCapacity = std::max<std::uint32_t>(1, Settings.LeafCapacity);
 }
 
 void Partitioner::Centroid(const SoupTriangle& t, double out[3]) const
@@ -64,7 +64,7 @@ void Partitioner::Insert(const SoupTriangle* triangles, std::size_t count)
       ++Inserted;
       // Only the leaf that just grew can exceed the capacity; its children may too (all
       // triangles on one side), hence the loop.
-      while (Buckets.Count(std::uint32_t(leaf)) > Options.LeafCapacity &&
+      while (Buckets.Count(std::uint32_t(leaf)) > Settings.LeafCapacity &&
         Tetrahedra.SplitDiamond(leaf, redistribute))
       {
         leaf = Tetrahedra.Descend(leaf, centroids[i]);
@@ -86,7 +86,7 @@ PartitionStats Partitioner::Stats() const
     ++s.Leaves;
     s.NonEmptyLeaves += n > 0;
     s.LargestLeaf = std::max(s.LargestLeaf, n);
-    s.OverfullLeaves += n > Options.LeafCapacity;
+    s.OverfullLeaves += n > Settings.LeafCapacity;
   }
   return s;
 }

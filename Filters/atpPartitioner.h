@@ -55,7 +55,10 @@ public:
   {
     Buckets.Read(std::uint32_t(leaf), out);
   }
+  /// Empties the leaf's bucket once its triangles are read for the last time.
+  void ReleaseLeaf(TetraForest::NodeIndex leaf) { Buckets.Clear(std::uint32_t(leaf)); }
   PartitionStats Stats() const;
+  const PartitionOptions& Options() const { return Settings; }
 
   /// The triangle's centroid in lattice coordinates: the one point that decides its leaf.
   void Centroid(const SoupTriangle& t, double out[3]) const;
@@ -63,7 +66,7 @@ public:
 private:
   void Redistribute(TetraForest::NodeIndex splitNode);
 
-  PartitionOptions Options;
+  PartitionOptions Settings;
   LatticeFrame Lattice;
   TetraForest Tetrahedra;
   BucketStore Buckets;

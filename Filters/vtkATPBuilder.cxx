@@ -1,5 +1,6 @@
 #include "vtkATPBuilder.h"
 
+#include "atpConstruction.h"
 #include "atpStreamPartition.h"
 #include "atpTriangleSource.h"
 #include "atpPolyDataTriangleSource.h"
@@ -12,6 +13,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPolyData.h"
 
+#include <chrono>
 #include <stdexcept>
 
 vtkStandardNewMacro(vtkATPBuilder);
@@ -20,7 +22,18 @@ struct vtkATPBuilder::Results
 {
   atp::InputStats Input;
   atp::PartitionStats Partition;
+  atp::ConstructionStats Construction;
+  double PartitionSeconds = 0;
+  double ConstructionSeconds = 0;
 };
+
+namespace
+{
+double SecondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+}
 
 vtkATPBuilder::vtkATPBuilder()
   : Last(std::make_unique<Results>())
@@ -31,6 +44,7 @@ vtkATPBuilder::vtkATPBuilder()
 
 vtkATPBuilder::~vtkATPBuilder()
 {
+  this->SetInputFileName(nullptr);
   this->SetFileName(nullptr);
   this->SetScratchDirectory(nullptr);
 }
@@ -43,7 +57,7 @@ void vtkATPBuilder::SetInputData(vtkPolyData* mesh)
 int vtkATPBuilder::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
-  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1); // a FileName streams instead
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1); // an InputFileName streams instead
   return 1;
 }
 
@@ -60,9 +74,15 @@ vtkTypeBool vtkATPBuilder::ProcessRequest(
 
 int vtkATPBuilder::Build()
 {
-  if (this->GetNumberOfInputConnections(0) == 0 && !this->FileName)
+  if (this->GetNumberOfInputConnections(0) == 0 && !this->InputFileName)
   {
-    this->ErrorMessage = "no input: set a FileName or connect a vtkPolyData";
+    this->ErrorMessage = "no input: set an InputFileName or connect a vtkPolyData";
+    vtkErrorMacro(<< this->ErrorMessage);
+    return 0;
+  }
+  if (!this->FileName || !*this->FileName)
+  {
+    this->ErrorMessage = "no output: set the FileName of the model to write";
     vtkErrorMacro(<< this->ErrorMessage);
     return 0;
   }
@@ -78,10 +98,11 @@ int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, v
   const std::string scratch = this->ScratchDirectory ? this->ScratchDirectory : "";
   try
   {
+    auto phaseStart = std::chrono::steady_clock::now(); // opening reads the input once
     std::unique_ptr<atp::TriangleSource> source;
-    if (this->FileName)
+    if (this->InputFileName)
     {
-      source = atp::OpenTriangleSource(this->FileName, scratch);
+      source = atp::OpenTriangleSource(this->InputFileName, scratch);
     }
     else
     {
@@ -95,24 +116,45 @@ int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, v
 
     this->ExpectedTriangles = source->ExpectedTriangles();
     const double expected = double(this->ExpectedTriangles);
+    // Partitioning streams at several million triangles/s, simplification at about one
+    // million: the shares of the progress bar follow.
+    constexpr double PartitionShare = 0.15;
     this->SetProgressText("partitioning");
     this->UpdateProgress(0);
     auto partitioner = atp::PartitionStream(*source, options, [&](std::uint64_t done) {
       if (expected > 0)
       {
-        this->UpdateProgress(std::min(1.0, double(done) / expected));
+        this->UpdateProgress(PartitionShare * std::min(1.0, double(done) / expected));
       }
+      this->ThrowIfAborted();
     });
     this->Last->Input = source->Stats();
     this->Last->Partition = partitioner->Stats();
+    this->Last->PartitionSeconds = SecondsSince(phaseStart);
+    phaseStart = std::chrono::steady_clock::now();
+    const atp::Box bounds = source->Bounds();
+    source.reset(); // its scratch arrays (vertices, sketch) are no longer needed
+
+    atp::ConstructionOptions construction;
+    construction.PatchBudget = std::uint32_t(this->PatchBudget);
+    construction.Threads = this->NumberOfThreads;
+    construction.ScratchDirectory = scratch;
+    this->SetProgressText("simplifying");
+    this->Last->Construction = atp::BuildModel(*partitioner, bounds, this->Last->Input,
+      construction, this->FileName, [&](double fraction) {
+        this->UpdateProgress(PartitionShare + (1 - PartitionShare) * fraction);
+        this->ThrowIfAborted();
+      });
+    this->Last->ConstructionSeconds = SecondsSince(phaseStart);
     this->UpdateProgress(1);
   }
   catch (const std::exception& e)
   {
     this->ErrorMessage = e.what();
     vtkErrorMacro(<< this->ErrorMessage);
-    return 0;
   }
+  // Like vtkWriter: the failure is reported once, above, and kept for Build(); a failed
+  // request would make the executive print a second, less helpful error.
   return 1;
 }
 
@@ -126,11 +168,38 @@ const atp::PartitionStats& vtkATPBuilder::GetPartitionStats() const
   return this->Last->Partition;
 }
 
+const atp::ConstructionStats& vtkATPBuilder::GetConstructionStats() const
+{
+  return this->Last->Construction;
+}
+
+double vtkATPBuilder::GetPartitionSeconds() const
+{
+  return this->Last->PartitionSeconds;
+}
+
+double vtkATPBuilder::GetConstructionSeconds() const
+{
+  return this->Last->ConstructionSeconds;
+}
+
+void vtkATPBuilder::ThrowIfAborted()
+{
+  if (this->GetAbortExecute())
+  {
+    throw std::runtime_error("build cancelled");
+  }
+}
+
 void vtkATPBuilder::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  os << indent << "InputFileName: " << (this->InputFileName ? this->InputFileName : "(none)")
+     << "\n";
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
   os << indent << "LeafCapacity: " << this->LeafCapacity << "\n";
+  os << indent << "PatchBudget: " << this->PatchBudget << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "BucketMemoryMiB: " << this->BucketMemoryMiB << "\n";
   os << indent << "ScratchDirectory: "
      << (this->ScratchDirectory ? this->ScratchDirectory : "(default)") << "\n";

@@ -2,14 +2,18 @@
  * @class   vtkATPBuilder
  * @brief   Builds an Adaptive TetraPuzzles multiresolution model from a triangle mesh.
  *
- * Input is either a mesh file streamed from disk (SetFileName: PLY, OBJ, STL, VTP), which never
- * needs to fit in memory, or a vtkPolyData on input port 0. The triangles are partitioned out of
- * core into a forest of tetrahedra (longest-edge bisection, 6 roots): each triangle goes to the
- * leaf holding its centroid and a leaf with more than LeafCapacity triangles splits with its
- * whole diamond. Progress events report the fraction of triangles processed.
+ * Input is either a mesh file streamed from disk (SetInputFileName: PLY, OBJ, STL, VTP), which
+ * never needs to fit in memory, or a vtkPolyData on input port 0; the model is written to
+ * FileName (.atp), like a vtkWriter. The triangles are partitioned out of core into a forest of
+ * tetrahedra (longest-edge bisection, 6 roots): each triangle goes to the leaf holding its
+ * centroid and a leaf with more than LeafCapacity triangles splits with its whole diamond. Then,
+ * bottom-up, every diamond simplifies its children's patches to PatchBudget triangles per
+ * member with its external boundary locked, and errors, spheres and normal cones are saturated.
+ * Progress events report the fraction done; GetProgressText() names the phase.
  *
  * Build() runs the pipeline and returns 1 on success; on failure it returns 0, reports a
- * vtkErrorMacro naming the input and the problem, and GetErrorMessage() holds that message.
+ * vtkErrorMacro naming the input and the problem, GetErrorMessage() holds that message, and no
+ * file that looks like a model is left at FileName (an existing one is untouched).
  */
 #ifndef vtkATPBuilder_h
 #define vtkATPBuilder_h
@@ -24,6 +28,7 @@ class vtkPolyData;
 
 namespace atp
 {
+struct ConstructionStats;
 struct PartitionStats;
 struct InputStats;
 }
@@ -40,8 +45,27 @@ public:
 
   ///@{
   /// Mesh file to stream (used instead of input port 0 when set).
+  vtkSetStringMacro(InputFileName);
+  vtkGetStringMacro(InputFileName);
+  ///@}
+
+  ///@{
+  /// The model file to write (.atp).
   vtkSetStringMacro(FileName);
   vtkGetStringMacro(FileName);
+  ///@}
+
+  ///@{
+  /// Most triangles a tetrahedron of a simplified level holds (default 2000).
+  vtkSetClampMacro(PatchBudget, int, 16, 1 << 20);
+  vtkGetMacro(PatchBudget, int);
+  ///@}
+
+  ///@{
+  /// Worker threads for simplification and encoding (default 0: every core). The model is
+  /// byte-identical whatever the count.
+  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  vtkGetMacro(NumberOfThreads, int);
   ///@}
 
   ///@{
@@ -75,6 +99,10 @@ public:
   /// Figures of the last successful build.
   const atp::InputStats& GetInputStats() const;
   const atp::PartitionStats& GetPartitionStats() const;
+  const atp::ConstructionStats& GetConstructionStats() const;
+  /// Wall-clock seconds of the partitioning phase (reading included) and of construction.
+  double GetPartitionSeconds() const;
+  double GetConstructionSeconds() const;
   ///@}
 
 protected:
@@ -85,10 +113,15 @@ protected:
     vtkInformation* request, vtkInformationVector** inputs, vtkInformationVector* outputs) override;
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*);
+  /// Observers cancel with SetAbortExecute(1); the build stops at the next progress report.
+  void ThrowIfAborted();
 
+  char* InputFileName = nullptr;
   char* FileName = nullptr;
   char* ScratchDirectory = nullptr;
   int LeafCapacity = 4000;
+  int PatchBudget = 2000;
+  int NumberOfThreads = 0;
   int BucketMemoryMiB = 256;
   vtkTypeUInt64 ExpectedTriangles = 0;
 

@@ -1,5 +1,6 @@
 #include "atpMeshTriangleSource.h"
 
+#include "atpNormalEncoding.h"
 #include "atpResidentPages.h"
 
 #include <cmath>
@@ -33,6 +34,18 @@ bool HasZeroArea(const float v[3][3])
     ExactProductsEqual(e[0], f[1], e[1], f[0]);
 }
 
+/// Twice the area times the unit normal: summing these weights each face by its area.
+std::array<double, 3> AreaNormal(const float v[3][3])
+{
+  double e[3], f[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    e[a] = double(v[1][a]) - double(v[0][a]);
+    f[a] = double(v[2][a]) - double(v[0][a]);
+  }
+  return { { e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0] } };
+}
+
 } // namespace
 
 MeshTriangleSource::MeshTriangleSource(
@@ -41,9 +54,10 @@ MeshTriangleSource::MeshTriangleSource(
   , Mesh(std::move(mesh))
   , Vertices(this->Mesh->Vertices())
   , Sketch(this->Vertices.Count, scratchDirectory)
+  , NormalSums(scratchDirectory, this->Vertices.Count)
 {
   this->CheckVerticesAndBound();
-  this->BuildSketch();
+  this->FirstPass();
 }
 
 void MeshTriangleSource::CheckVerticesAndBound()
@@ -75,7 +89,7 @@ bool MeshTriangleSource::Keep(const std::uint32_t triangle[3], float corners[3][
   return !HasZeroArea(corners);
 }
 
-void MeshTriangleSource::BuildSketch()
+void MeshTriangleSource::FirstPass()
 {
   PolygonBatch batch;
   while (this->Mesh->NextBatch(batch))
@@ -94,6 +108,15 @@ void MeshTriangleSource::BuildSketch()
       if (this->Keep(triangle, corners))
       {
         this->Sketch.AddTriangle(triangle[0], triangle[1], triangle[2]);
+        const std::array<double, 3> normal = AreaNormal(corners);
+        for (int c = 0; c < 3; ++c)
+        {
+          std::array<float, 3>& sum = this->NormalSums[triangle[c]];
+          for (int a = 0; a < 3; ++a)
+          {
+            sum[a] += float(normal[a]);
+          }
+        }
         ++this->KeptTriangles;
       }
       else
@@ -127,6 +150,26 @@ void MeshTriangleSource::BoundResidentMemory()
     ReleaseResidentPages(this->Vertices.Base, this->Vertices.Count * this->Vertices.Stride);
   }
   this->Sketch.ReleaseResidentPages();
+  ReleaseResidentPages(this->NormalSums.Data(), this->NormalSums.Size() * sizeof(this->NormalSums[0]));
+}
+
+void MeshTriangleSource::SetCornerNormals(const std::uint32_t triangle[3], SoupTriangle& soup) const
+{
+  for (int c = 0; c < 3; ++c)
+  {
+    const std::array<float, 3>& sum = this->NormalSums[triangle[c]];
+    if (sum[0] == 0 && sum[1] == 0 && sum[2] == 0)
+    {
+      // Opposite faces cancelled out (a sheet folded onto itself): the face's own normal.
+      const std::array<double, 3> face = AreaNormal(soup.V);
+      const float n[3] = { float(face[0]), float(face[1]), float(face[2]) };
+      EncodeNormal(n, soup.Normals[c]);
+    }
+    else
+    {
+      EncodeNormal(sum.data(), soup.Normals[c]);
+    }
+  }
 }
 
 bool MeshTriangleSource::StartNextBatch()
@@ -171,6 +214,7 @@ std::size_t MeshTriangleSource::Read(SoupTriangle* out, std::size_t max)
       }
     }
     soup.BoundaryEdges = boundary;
+    this->SetCornerNormals(triangle, soup);
     std::memset(soup.Padding, 0, sizeof(soup.Padding));
     ++n;
   }

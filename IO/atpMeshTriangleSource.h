@@ -1,6 +1,7 @@
 // The one path from a format reader's polygons to soup triangles, shared by every format: fan
-// triangulation, dropping degenerate triangles, and marking boundary edges with a BoundarySketch.
-// Opening makes a first pass over the faces (sketch, counts, errors); Read makes the second.
+// triangulation, dropping degenerate triangles, marking boundary edges with a BoundarySketch and
+// giving corners their vertex normals. Opening makes a first pass over the faces (sketch, normal
+// sums, counts, errors); Read makes the second.
 #ifndef atpMeshTriangleSource_h
 #define atpMeshTriangleSource_h
 
@@ -9,6 +10,7 @@
 #include "atpPolygonMesh.h"
 #include "atpTriangleSource.h"
 
+#include <array>
 #include <memory>
 #include <string>
 
@@ -30,7 +32,9 @@ public:
 
 private:
   void CheckVerticesAndBound();
-  void BuildSketch();
+  /// The first pass: boundary sketch and area-weighted vertex normal sums.
+  void FirstPass();
+  void SetCornerNormals(const std::uint32_t triangle[3], SoupTriangle& soup) const;
   /// Gets the corner positions; false for a degenerate triangle.
   bool Keep(const std::uint32_t triangle[3], float corners[3][3]) const;
   bool StartNextBatch();
@@ -43,6 +47,7 @@ private:
   VertexView Vertices;
   Box VertexBounds;
   BoundarySketch Sketch;
+  ScratchArray<std::array<float, 3>> NormalSums;
   InputStats Statistics;
   std::uint64_t KeptTriangles = 0;
   FanCursor Fans;

@@ -32,16 +32,19 @@ struct VTKATPIO_EXPORT Box
   }
 };
 
-/// One input triangle with its corner positions copied (soup form), 40 bytes.
+/// One input triangle with its corner positions and normals copied (soup form), 52 bytes.
 struct SoupTriangle
 {
   float V[3][3];
+  /// Corner normals (EncodeNormal of atpNormalEncoding.h): the vertex normals of the whole input
+  /// mesh, so a vertex shared by triangles in different buckets has one normal everywhere.
+  std::int16_t Normals[3][2];
   /// Bit i set: the edge from corner i to corner (i+1)%3 is a boundary edge of the input mesh
   /// (used by exactly one triangle). Simplification must know these (paper, section 5.2).
   std::uint8_t BoundaryEdges;
   std::uint8_t Padding[3];
 };
-static_assert(sizeof(SoupTriangle) == 40, "SoupTriangle is an on-disk record: keep it packed");
+static_assert(sizeof(SoupTriangle) == 52, "SoupTriangle is an on-disk record: keep it packed");
 
 /// A problem with an input file. The message names the file and says what is wrong.
 class VTKATPIO_EXPORT InputError : public std::runtime_error

@@ -10,3 +10,9 @@ bash scripts/build.sh
 echo
 echo "== atp build Data/bumpy-torus.ply -o build/bumpy-torus.atp"
 build/bin/atp build Data/bumpy-torus.ply -o build/bumpy-torus.atp
+echo
+echo "== atp info build/bumpy-torus.atp"
+build/bin/atp info build/bumpy-torus.atp
+echo
+echo "== atp verify build/bumpy-torus.atp"
+build/bin/atp verify build/bumpy-torus.atp

@@ -40,6 +40,23 @@ expect 2 "expected 1 argument" -- "$atp" build -o "$work/x.atp"
 # The main job on the bundled sample.
 expect 0 "done: .* triangles/s, peak memory" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/x.atp" --quiet
 expect 0 "partition: [0-9]+ leaves" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/x.atp" --leaf-capacity 500 --bucket-memory 1
+[ -s "$work/x.atp" ] || { echo "FAIL: atp build wrote no model"; failures=$((failures + 1)); }
+expect 0 "simplify: [0-9]+ diamonds" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/y.atp" --threads 1 --patch-budget 1000
+expect 0 "model: [0-9]+ nodes, [0-9]+ levels" -- "$atp" info "$work/x.atp"
+expect 0 '"bytes_per_input_triangle"' -- "$atp" info --json "$work/x.atp"
+expect 0 "x.atp: valid" -- "$atp" verify "$work/x.atp"
+# Corruption anywhere and truncation: verify says so with exit code 1.
+cp "$work/x.atp" "$work/bad.atp"
+size=$(stat -c %s "$work/bad.atp")
+offset=$((size * 2 / 3))
+byte=$(od -An -tu1 -j "$offset" -N1 "$work/bad.atp" | tr -d ' ')
+printf "\\x$(printf %02x $(((byte + 1) % 256)))" | dd of="$work/bad.atp" bs=1 seek="$offset" conv=notrunc status=none
+expect 1 "INVALID" -- "$atp" verify "$work/bad.atp"
+head -c $((size / 2)) "$work/x.atp" > "$work/bad.atp"
+expect 1 "truncated" -- "$atp" verify "$work/bad.atp"
+expect 1 "not an ATP model" -- "$atp" info "$data/bumpy-torus.ply"
+rm -f "$work/bad.atp"
+expect 2 "patch-budget must be" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/x.atp" --patch-budget 3
 
 # Bad input: one line naming the file and the problem.
 expect 1 "missing.ply" -- "$atp" build "$work/missing.ply" -o "$work/x.atp"
@@ -50,16 +67,19 @@ expect 1 "nan.ply.*(non-finite|nan)" -- "$atp" build "$work/nan.ply" -o "$work/x
 printf 'ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n' > "$work/empty.ply"
 expect 1 "empty.ply.*empty" -- "$atp" build "$work/empty.ply" -o "$work/x.atp"
 expect 1 "scratch" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/x.atp" --scratch "$work/no/such/dir"
+# A failed build leaves an existing model as it was.
+cp "$work/x.atp" "$work/keep.atp"
+expect 1 "truncated.ply" -- "$atp" build "$work/truncated.ply" -o "$work/keep.atp"
+cmp -s "$work/x.atp" "$work/keep.atp" || { echo "FAIL: a failed build changed the existing model"; failures=$((failures + 1)); }
 
 # A full scratch disk (a file size limit stands in for it): an error, not a crash.
-expect 1 "cannot write scratch data.*(File too large|No space)" -- bash -c "ulimit -f 2048; exec '$atp' build '$data/bumpy-torus.ply' -o '$work/x.atp' --bucket-memory 1 --scratch '$work' --quiet"
-[ -z "$(ls "$work" | grep -v -E '\.(ply)$')" ] || { echo "FAIL: files left in the scratch directory: $(ls "$work")"; failures=$((failures + 1)); }
+expect 1 "cannot write scratch data.*(File too large|No space)" -- bash -c "ulimit -f 2048; exec '$atp' build '$data/bumpy-torus.ply' -o '$work/full.atp' --bucket-memory 1 --scratch '$work' --quiet"
+[ -z "$(ls "$work" | grep -v -E '^(x|y|keep)\.atp$|\.ply$')" ] || { echo "FAIL: files left behind: $(ls "$work")"; failures=$((failures + 1)); }
 
 # The generator writes a mesh the builder reads back, and never a partial file.
 expect 0 "wrote .*g.ply: [0-9]+ triangles" -- "$atp" generate -n 5000 --holes 2 -o "$work/g.ply"
 expect 0 "boundary edges" -- "$atp" build "$work/g.ply" -o "$work/g.atp" --quiet
 expect 1 "cannot create" -- "$atp" generate -n 5000 -o "$work/no/such/dir/g.ply"
-[ ! -e "$work/x.atp" ] || { echo "FAIL: atp build wrote an output although it cannot yet"; failures=$((failures + 1)); }
 
 echo "$passed passed, $failures failed"
 [ "$failures" -eq 0 ]

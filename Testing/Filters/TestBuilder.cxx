@@ -1,5 +1,6 @@
 // vtkATPBuilder as a VTK user drives it: polydata or file input, properties, progress events,
 // errors reported (not thrown), PrintSelf.
+#include "atpConstruction.h"
 #include "atpPartitioner.h"
 #include "atpTriangleSource.h"
 #include "vtkATPBuilder.h"
@@ -48,6 +49,23 @@ vtkNew<vtkPolyData> WavySheet(int n)
   return sheet;
 }
 
+/// A path for a test's output, removed when the test ends.
+struct TemporaryPath
+{
+  std::string Path;
+  explicit TemporaryPath(const std::string& name)
+    : Path("/tmp/atp-test-builder-" + std::to_string(::getpid()) + "-" + name)
+  {
+  }
+  ~TemporaryPath() { std::remove(Path.c_str()); }
+  const char* c_str() const { return Path.c_str(); }
+};
+
+bool Exists(const TemporaryPath& p)
+{
+  return ::access(p.c_str(), F_OK) == 0;
+}
+
 struct ProgressLog
 {
   std::vector<double> Values;
@@ -61,9 +79,12 @@ void Record(vtkObject*, unsigned long, void* client, void* call)
 
 TEST(Builder, PartitionsPolyDataInputWithProgress)
 {
+  const TemporaryPath model("sheet.atp");
   vtkNew<vtkATPBuilder> builder;
   builder->SetInputData(WavySheet(60));
+  builder->SetFileName(model.c_str());
   builder->SetLeafCapacity(100);
+  builder->SetPatchBudget(50);
   ProgressLog log;
   vtkNew<vtkCallbackCommand> progress;
   progress->SetCallback(Record);
@@ -81,6 +102,12 @@ TEST(Builder, PartitionsPolyDataInputWithProgress)
   EXPECT_EQ(log.Values.front(), 0.0);
   EXPECT_EQ(log.Values.back(), 1.0);
   EXPECT_TRUE(std::is_sorted(log.Values.begin(), log.Values.end()));
+  EXPECT_TRUE(Exists(model));
+  const atp::ConstructionStats& c = builder->GetConstructionStats();
+  EXPECT_EQ(c.Nodes, p.Leaves + p.TetrahedraSplit);
+  EXPECT_GT(c.Diamonds, 0u);
+  EXPECT_GT(c.StoredTriangles, p.Triangles); // the full resolution plus the coarser levels
+  EXPECT_GT(c.FileBytes, 0u);
 
   // A second Build() runs again (a sink, like vtkWriter::Write).
   log.Values.clear();
@@ -90,21 +117,22 @@ TEST(Builder, PartitionsPolyDataInputWithProgress)
 
 TEST(Builder, StreamsAFileToTheSameResult)
 {
-  const std::string path = "/tmp/atp-test-builder-" + std::to_string(::getpid()) + ".vtp";
+  const TemporaryPath mesh("sheet.vtp"), fileModel("file.atp"), memoryModel("memory.atp");
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputData(WavySheet(40));
-  writer->SetFileName(path.c_str());
+  writer->SetFileName(mesh.c_str());
   ASSERT_EQ(writer->Write(), 1);
 
   vtkNew<vtkATPBuilder> fromFile;
-  fromFile->SetFileName(path.c_str());
+  fromFile->SetInputFileName(mesh.c_str());
+  fromFile->SetFileName(fileModel.c_str());
   fromFile->SetLeafCapacity(50);
   ASSERT_EQ(fromFile->Build(), 1) << fromFile->GetErrorMessage();
   vtkNew<vtkATPBuilder> fromMemory;
   fromMemory->SetInputData(WavySheet(40));
+  fromMemory->SetFileName(memoryModel.c_str());
   fromMemory->SetLeafCapacity(50);
   ASSERT_EQ(fromMemory->Build(), 1) << fromMemory->GetErrorMessage();
-  std::remove(path.c_str());
 
   EXPECT_EQ(fromFile->GetPartitionStats().Leaves, fromMemory->GetPartitionStats().Leaves);
   EXPECT_EQ(fromFile->GetPartitionStats().Depth, fromMemory->GetPartitionStats().Depth);
@@ -119,8 +147,14 @@ TEST(Builder, ReportsErrorsWithoutThrowing)
   EXPECT_EQ(builder->Build(), 0);
   EXPECT_NE(std::string(builder->GetErrorMessage()).find("no input"), std::string::npos);
 
-  builder->SetFileName("/nonexistent/mesh.ply");
+  builder->SetInputFileName("/nonexistent/mesh.ply");
   EXPECT_EQ(builder->Build(), 0);
+  EXPECT_NE(std::string(builder->GetErrorMessage()).find("no output"), std::string::npos);
+
+  const TemporaryPath model("never.atp");
+  builder->SetFileName(model.c_str());
+  EXPECT_EQ(builder->Build(), 0);
+  EXPECT_FALSE(Exists(model));
   EXPECT_NE(std::string(builder->GetErrorMessage()).find("/nonexistent/mesh.ply"),
     std::string::npos);
 
@@ -128,6 +162,7 @@ TEST(Builder, ReportsErrorsWithoutThrowing)
   empty->AddObserver(vtkCommand::ErrorEvent, quiet);
   vtkNew<vtkPolyData> nothing;
   empty->SetInputData(nothing);
+  empty->SetFileName(model.c_str());
   EXPECT_EQ(empty->Build(), 0);
   EXPECT_NE(std::string(empty->GetErrorMessage()).find("empty"), std::string::npos);
 }

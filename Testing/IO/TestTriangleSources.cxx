@@ -1,6 +1,7 @@
 // OpenTriangleSource on every input format: the triangles and boundary flags it yields, what it
 // drops, and a clear InputError (never a crash) for every kind of bad input. Inputs are written
 // into a temporary directory by the tests themselves.
+#include "atpNormalEncoding.h"
 #include "atpTriangleSource.h"
 
 #include <vtkCellArray.h>
@@ -19,6 +20,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -578,6 +580,47 @@ TEST_F(TriangleSources, ObjTriangles)
 {
   const Mesh mesh = Grid(4, 4, false);
   ExpectMesh(this->Read(this->Write("grid.obj", ObjBytes(mesh))), mesh, 16);
+}
+
+TEST_F(TriangleSources, CornersCarryAreaWeightedVertexNormals)
+{
+  // A flat grid: every normal is +z. A closed tetrahedron: each corner's normal is the
+  // area-weighted mean of its three faces, and a vertex has the same bits in every triangle.
+  const Result flat = this->Read(this->Write("flat.obj", ObjBytes(Grid(3, 3, true))));
+  for (const atp::SoupTriangle& t : flat.Triangles)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      float n[3];
+      atp::DecodeNormal(t.Normals[c], n);
+      EXPECT_NEAR(n[2], 1.0f, 1e-6f);
+    }
+  }
+  const Mesh tetra = Tetrahedron();
+  std::map<std::array<float, 3>, std::array<std::int16_t, 2>> seen;
+  const Result closed = this->Read(this->Write("tetra.obj", ObjBytes(tetra)));
+  for (const atp::SoupTriangle& t : closed.Triangles)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const std::array<float, 3> p{ { t.V[c][0], t.V[c][1], t.V[c][2] } };
+      const std::array<std::int16_t, 2> bits{ { t.Normals[c][0], t.Normals[c][1] } };
+      EXPECT_EQ(seen.emplace(p, bits).first->second, bits) << "one normal per vertex";
+      // At the origin: faces -z, -y, -x of area 1/2 each. At (1,0,0): -z and -y of area 1/2 and
+      // the slanted face, (1,1,1)/sqrt(3) with area sqrt(3)/2: they sum to (1/2, 0, 0).
+      float n[3];
+      atp::DecodeNormal(t.Normals[c], n);
+      const float expected[4][3] = { { -1, -1, -1 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+      const int vertex = int(p[0]) + 2 * int(p[1]) + 3 * int(p[2]);
+      const float* e = expected[vertex];
+      const float length = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+      for (int a = 0; a < 3; ++a)
+      {
+        EXPECT_NEAR(n[a], e[a] / length, 1e-4f) << "vertex " << vertex;
+      }
+    }
+  }
+  EXPECT_EQ(seen.size(), 4u);
 }
 
 TEST_F(TriangleSources, ObjCornerFormsNegativeIndicesPolygonsAndInterleaving)

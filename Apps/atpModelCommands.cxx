@@ -1,0 +1,174 @@
+#include "atpModelCommands.h"
+
+#include "atpCommandLine.h"
+#include "atpModelFile.h"
+#include "atpPatchCodec.h"
+#include "atpProgressReport.h"
+#include "atpQuantizationGrid.h"
+#include "atpTetra.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+
+namespace atp
+{
+namespace
+{
+struct LevelFigures
+{
+  std::uint64_t Nodes = 0;
+  std::uint64_t Triangles = 0;
+  std::uint64_t Bytes = 0;
+  double SaturatedError = 0;
+};
+
+std::map<int, LevelFigures> Levels(const ModelFile& model)
+{
+  std::map<int, LevelFigures> levels;
+  for (std::size_t i = 0; i < model.NodeCount(); ++i)
+  {
+    const ModelNode& n = model.Node(i);
+    LevelFigures& l = levels[TetId{ n.Tet }.Level()];
+    ++l.Nodes;
+    l.Triangles += n.TriangleCount;
+    l.Bytes += n.PatchBytes;
+    l.SaturatedError = std::max(l.SaturatedError, double(n.SaturatedError));
+  }
+  return levels;
+}
+
+QuantizationGrid GridOf(const ModelHeader& h)
+{
+  QuantizationGrid grid;
+  for (int a = 0; a < 3; ++a)
+  {
+    grid.Origin[a] = h.QuantizationOrigin[a];
+  }
+  grid.Step = h.QuantizationStep;
+  return grid;
+}
+} // namespace
+
+int InfoCommand(const std::vector<std::string>& arguments)
+{
+  CommandLine cl("info", "Describes a model: its input, options, size and levels.");
+  cl.AddPositional("MODEL", "a .atp model");
+  cl.AddFlag("json", "print one JSON object instead of text");
+  if (!cl.Parse(arguments))
+  {
+    return 0;
+  }
+  const ModelFile model = ModelFile::Open(cl.Positional(0));
+  const ModelHeader& h = model.Header();
+  const std::map<int, LevelFigures> levels = Levels(model);
+  const double perTriangle = double(h.FileBytes) / double(std::max<std::uint64_t>(1, h.InputTriangles));
+  if (cl.Has("json"))
+  {
+    std::printf("{\"file\": \"%s\", \"version\": %u, \"bytes\": %llu, \"nodes\": %llu, "
+                "\"levels\": %u, \"input_triangles\": %llu, \"input_boundary_edges\": %llu, "
+                "\"stored_triangles\": %llu, \"bytes_per_input_triangle\": %.3f, "
+                "\"leaf_capacity\": %u, \"patch_budget\": %u, \"error_scale\": %g, "
+                "\"box_min\": [%.9g, %.9g, %.9g], \"box_max\": [%.9g, %.9g, %.9g], "
+                "\"quantization_step\": %.9g, \"per_level\": [",
+      cl.Positional(0).c_str(), h.Version, static_cast<unsigned long long>(h.FileBytes),
+      static_cast<unsigned long long>(h.NodeCount), h.Depth + 1,
+      static_cast<unsigned long long>(h.InputTriangles),
+      static_cast<unsigned long long>(h.InputBoundaryEdges),
+      static_cast<unsigned long long>(h.StoredTriangles), perTriangle, h.LeafCapacity,
+      h.PatchBudget, double(h.ErrorScale), h.BoxMin[0], h.BoxMin[1], h.BoxMin[2], h.BoxMax[0],
+      h.BoxMax[1], h.BoxMax[2], h.QuantizationStep);
+    const char* separator = "";
+    for (const auto& [level, l] : levels)
+    {
+      std::printf("%s{\"level\": %d, \"nodes\": %llu, \"triangles\": %llu, \"bytes\": %llu, "
+                  "\"saturated_error\": %.6g}",
+        separator, level, static_cast<unsigned long long>(l.Nodes),
+        static_cast<unsigned long long>(l.Triangles), static_cast<unsigned long long>(l.Bytes),
+        l.SaturatedError);
+      separator = ", ";
+    }
+    std::printf("]}\n");
+    return 0;
+  }
+  std::printf("%s: ATP model version %u, %.1f MiB\n", cl.Positional(0).c_str(), h.Version,
+    double(h.FileBytes) / (1 << 20));
+  std::printf("input: %s triangles, %llu boundary edges, box (%g %g %g) - (%g %g %g)\n",
+    FormatCount(double(h.InputTriangles)).c_str(),
+    static_cast<unsigned long long>(h.InputBoundaryEdges), h.BoxMin[0], h.BoxMin[1], h.BoxMin[2],
+    h.BoxMax[0], h.BoxMax[1], h.BoxMax[2]);
+  std::printf("model: %llu nodes, %u levels, %s triangles stored over all levels, %.2f "
+              "bytes/input triangle\n",
+    static_cast<unsigned long long>(h.NodeCount), h.Depth + 1,
+    FormatCount(double(h.StoredTriangles)).c_str(), perTriangle);
+  std::printf("options: leaf capacity %u, patch budget %u, error scale %g, quantization step %g\n",
+    h.LeafCapacity, h.PatchBudget, double(h.ErrorScale), h.QuantizationStep);
+  std::printf("%6s %10s %12s %12s %16s\n", "level", "nodes", "triangles", "bytes", "saturated error");
+  for (const auto& [level, l] : levels)
+  {
+    std::printf("%6d %10llu %12llu %12llu %16.6g\n", level, static_cast<unsigned long long>(l.Nodes),
+      static_cast<unsigned long long>(l.Triangles), static_cast<unsigned long long>(l.Bytes),
+      l.SaturatedError);
+  }
+  return 0;
+}
+
+int VerifyCommand(const std::vector<std::string>& arguments)
+{
+  CommandLine cl("verify",
+    "Checks a model completely: header, node structure and invariants, the checksum of every\n"
+    "section and patch, and that every patch decodes. Exit code 0: valid; 1: not.");
+  cl.AddPositional("MODEL", "a .atp model");
+  if (!cl.Parse(arguments))
+  {
+    return 0;
+  }
+  const std::string& path = cl.Positional(0);
+  ModelFile model = [&]() {
+    try
+    {
+      return ModelFile::Open(path);
+    }
+    catch (const ModelError& e)
+    {
+      throw std::runtime_error(std::string(e.what()) + "\n" + path + ": INVALID");
+    }
+  }();
+  std::vector<std::string> problems = model.Verify();
+  if (problems.empty())
+  {
+    const QuantizationGrid grid = GridOf(model.Header());
+    PatchMesh patch;
+    for (std::size_t i = 0; i < model.NodeCount(); ++i)
+    {
+      try
+      {
+        DecodePatch(model.PatchData(i), model.Node(i).PatchBytes, grid, patch);
+        if (patch.TriangleCount() != model.Node(i).TriangleCount)
+        {
+          problems.push_back(path + ": node " + std::to_string(i) + ": the patch holds " +
+            std::to_string(patch.TriangleCount()) + " triangles, the node says " +
+            std::to_string(model.Node(i).TriangleCount));
+        }
+      }
+      catch (const PatchFormatError& e)
+      {
+        problems.push_back(path + ": node " + std::to_string(i) + ": " + e.what());
+      }
+    }
+  }
+  for (const std::string& p : problems)
+  {
+    std::fprintf(stderr, "%s\n", p.c_str());
+  }
+  if (!problems.empty())
+  {
+    std::printf("%s: INVALID (%zu problems)\n", path.c_str(), problems.size());
+    return 1;
+  }
+  std::printf("%s: valid (%zu nodes, every checksum and patch checked)\n", path.c_str(),
+    model.NodeCount());
+  return 0;
+}
+
+} // namespace atp

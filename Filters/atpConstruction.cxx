@@ -1,0 +1,447 @@
+#include "atpConstruction.h"
+
+#include "atpBounds.h"
+#include "atpMemberLocator.h"
+#include "atpMergePatches.h"
+#include "atpModelFormat.h"
+#include "atpModelWriter.h"
+#include "atpNormalEncoding.h"
+#include "atpParallel.h"
+#include "atpPatchCodec.h"
+#include "atpPatchStore.h"
+#include "atpQuantizationGrid.h"
+#include "atpScratchFile.h"
+#include "atpSimplifier.h"
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <numeric>
+
+namespace atp
+{
+namespace
+{
+using NodeIndex = TetraForest::NodeIndex;
+
+/// What construction knows about one tetrahedron once its patch is made.
+struct NodeResult
+{
+  PatchStore::Handle Intermediate; ///< full-precision patch, until the parent diamond reads it
+  std::uint64_t EncodedOffset = 0; ///< in the encoded-patch scratch file
+  std::uint32_t EncodedBytes = 0;
+  std::uint32_t Triangles = 0;
+  std::uint32_t Vertices = 0;
+  double Error = 0;
+  double SaturatedError = 0;
+  float Sphere[4] = { 0, 0, 0, 0 };
+  float SaturatedSphere[4] = { 0, 0, 0, 0 };
+  NormalCone Cone; ///< saturated: holds the face normals of the patch and of all descendants
+};
+
+/// A finished patch before it is stored: the mesh and what is computed from it off the main
+/// thread.
+struct MadePatch
+{
+  PatchMesh Mesh;
+  std::vector<std::uint8_t> Encoded;
+  Sphere Tight;
+  NormalCone Cone;
+};
+
+/// Patches made in one parallel step, written out in order afterwards.
+struct DiamondWork
+{
+  std::vector<NodeIndex> Members;
+  std::vector<MadePatch> Patches;
+  double Error = 0;
+  std::size_t Collapses = 0;
+  bool QuotasMet = true;
+};
+
+class ModelConstruction
+{
+public:
+  ModelConstruction(Partitioner& partition, const Box& bounds, const InputStats& input,
+    const ConstructionOptions& options, const ConstructionProgress& progress)
+    : Partition(partition)
+    , Forest(partition.Forest())
+    , Bounds(bounds)
+    , Input(input)
+    , Options(options)
+    , Progress(progress)
+    , Threads(options.Threads > 0 ? options.Threads : HardwareThreads())
+    , Grid(QuantizationGrid::ForBounds(bounds.Min.data(), bounds.Max.data()))
+    , Intermediate(options.ScratchDirectory)
+    , Encoded(options.ScratchDirectory)
+    , Results(partition.Forest().Size())
+  {
+  }
+
+  ConstructionStats Run(const std::string& outputPath)
+  {
+    std::vector<std::vector<NodeIndex>> levels(std::size_t(Forest.Depth()) + 1);
+    for (NodeIndex n = 0; n < NodeIndex(Forest.Size()); ++n)
+    {
+      levels[std::size_t(Forest[n].Id.Level())].push_back(n);
+    }
+    for (int level = Forest.Depth(); level >= 0; --level)
+    {
+      std::vector<NodeIndex> leaves, inner;
+      for (NodeIndex n : levels[std::size_t(level)])
+      {
+        (Forest[n].IsLeaf() ? leaves : inner).push_back(n);
+      }
+      MakeLeafPatches(leaves, level > 0);
+      SaturateLeafDiamonds(leaves);
+      SimplifyDiamonds(inner, level > 0);
+    }
+    Write(outputPath);
+    return Stats;
+  }
+
+private:
+  void ReportProgress(std::size_t nodesDone)
+  {
+    Done += nodesDone;
+    if (Progress)
+    {
+      // The last few percent are the file write.
+      Progress(0.97 * double(Done) / double(Forest.Size()));
+    }
+  }
+
+  /// A chunk of jobs big enough to keep every thread busy, small enough to bound memory.
+  std::size_t ChunkSize() const { return std::size_t(Threads) * 4; }
+
+  void Finish(MadePatch& made) const
+  {
+    made.Tight = EnclosingSphere(made.Mesh.Positions.data(), made.Mesh.VertexCount());
+    made.Cone = FaceNormalCone(made.Mesh);
+    made.Encoded = EncodePatch(made.Mesh, Grid);
+  }
+
+  /// Stores a finished patch for `node`: encoded bytes for the file, and the full-precision mesh
+  /// for the parent diamond when there is one.
+  void Store(NodeIndex node, const MadePatch& made, bool hasParent)
+  {
+    NodeResult& r = Results[std::size_t(node)];
+    r.EncodedOffset = EncodedEnd;
+    r.EncodedBytes = std::uint32_t(made.Encoded.size());
+    Encoded.WriteAt(EncodedEnd, made.Encoded.data(), made.Encoded.size());
+    EncodedEnd += made.Encoded.size();
+    r.Triangles = std::uint32_t(made.Mesh.TriangleCount());
+    r.Vertices = std::uint32_t(made.Mesh.VertexCount());
+    StoreSphere(made.Tight, r.Sphere);
+    if (hasParent)
+    {
+      r.Intermediate = Intermediate.Put(made.Mesh);
+    }
+    Stats.StoredTriangles += r.Triangles;
+    Stats.PatchBytes += made.Encoded.size();
+    Stats.PeakScratchBytes =
+      std::max(Stats.PeakScratchBytes, EncodedEnd + Intermediate.PeakBytes());
+  }
+
+  /// Leaves keep the input at full resolution: their bucket, welded into an indexed patch.
+  void MakeLeafPatches(const std::vector<NodeIndex>& leaves, bool haveParents)
+  {
+    std::vector<std::vector<SoupTriangle>> soups;
+    std::vector<MadePatch> made;
+    for (std::size_t first = 0; first < leaves.size(); first += ChunkSize())
+    {
+      const std::size_t count = std::min(ChunkSize(), leaves.size() - first);
+      soups.resize(count);
+      made.assign(count, MadePatch());
+      for (std::size_t i = 0; i < count; ++i)
+      {
+        soups[i].clear();
+        Partition.ReadLeaf(leaves[first + i], soups[i]);
+        Partition.ReleaseLeaf(leaves[first + i]);
+      }
+      ParallelFor(count, Threads, [&](std::size_t i) {
+        made[i].Mesh = WeldSoup(soups[i]);
+        Finish(made[i]);
+      });
+      for (std::size_t i = 0; i < count; ++i)
+      {
+        const NodeIndex leaf = leaves[first + i];
+        Store(leaf, made[i], haveParents);
+        Results[std::size_t(leaf)].Cone = made[i].Cone;
+      }
+      ReportProgress(count);
+    }
+  }
+
+  static PatchMesh WeldSoup(const std::vector<SoupTriangle>& soup)
+  {
+    PatchMesh corners;
+    corners.Positions.reserve(9 * soup.size());
+    corners.Normals.reserve(9 * soup.size());
+    for (const SoupTriangle& t : soup)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        float n[3];
+        DecodeNormal(t.Normals[c], n);
+        corners.Positions.insert(corners.Positions.end(), t.V[c], t.V[c] + 3);
+        corners.Normals.insert(corners.Normals.end(), n, n + 3);
+      }
+      corners.BoundaryEdges.push_back(t.BoundaryEdges);
+    }
+    corners.Indices.resize(3 * soup.size());
+    std::iota(corners.Indices.begin(), corners.Indices.end(), 0u);
+    return MergePatches({ &corners });
+  }
+
+  /// Leaves are never refined, but their diamond still shares one saturated sphere (the
+  /// invariant every diamond keeps); their error is zero.
+  void SaturateLeafDiamonds(const std::vector<NodeIndex>& leaves)
+  {
+    for (const std::vector<NodeIndex>& members : GroupByDiamond(leaves))
+    {
+      std::vector<Sphere> spheres;
+      for (NodeIndex m : members)
+      {
+        spheres.push_back(LoadSphere(Results[std::size_t(m)].Sphere));
+      }
+      float saturated[4];
+      StoreSphere(EnclosingSphere(spheres), saturated);
+      for (NodeIndex m : members)
+      {
+        std::copy(saturated, saturated + 4, Results[std::size_t(m)].SaturatedSphere);
+      }
+    }
+  }
+
+  /// Nodes of one level grouped by diamond: groups ordered by diamond id, members by TetId.
+  std::vector<std::vector<NodeIndex>> GroupByDiamond(const std::vector<NodeIndex>& nodes) const
+  {
+    std::map<std::uint64_t, std::vector<NodeIndex>> groups;
+    for (NodeIndex n : nodes)
+    {
+      groups[DiamondOf(Forest[n].Geometry).Bits].push_back(n);
+    }
+    std::vector<std::vector<NodeIndex>> ordered;
+    for (auto& [id, members] : groups)
+    {
+      std::sort(members.begin(), members.end(),
+        [this](NodeIndex a, NodeIndex b) { return Forest[a].Id < Forest[b].Id; });
+      ordered.push_back(std::move(members));
+    }
+    return ordered;
+  }
+
+  void SimplifyDiamonds(const std::vector<NodeIndex>& inner, bool haveParents)
+  {
+    const std::vector<std::vector<NodeIndex>> diamonds = GroupByDiamond(inner);
+    std::vector<DiamondWork> work;
+    for (std::size_t first = 0; first < diamonds.size(); first += ChunkSize())
+    {
+      const std::size_t count = std::min(ChunkSize(), diamonds.size() - first);
+      work.assign(count, DiamondWork());
+      ParallelFor(count, Threads, [&](std::size_t i) {
+        work[i].Members = diamonds[first + i];
+        SimplifyDiamond(work[i]);
+      });
+      std::size_t nodes = 0;
+      for (DiamondWork& w : work)
+      {
+        SaturateDiamond(w, haveParents);
+        nodes += w.Members.size();
+      }
+      ReportProgress(nodes);
+    }
+  }
+
+  /// Runs on a worker thread: reads only finished children, writes only into `w`.
+  void SimplifyDiamond(DiamondWork& w) const
+  {
+    std::vector<PatchMesh> children;
+    std::vector<Tetra> memberShapes;
+    for (NodeIndex m : w.Members)
+    {
+      memberShapes.push_back(Forest[m].Geometry);
+      for (NodeIndex c : Forest[m].Children)
+      {
+        children.emplace_back();
+        Intermediate.Get(Results[std::size_t(c)].Intermediate, children.back());
+      }
+    }
+    std::vector<const PatchMesh*> parts;
+    for (const PatchMesh& c : children)
+    {
+      parts.push_back(&c);
+    }
+    const PatchMesh merged = MergePatches(parts);
+    children.clear();
+    const MemberLocator locator(memberShapes, Partition.Frame());
+    const std::vector<std::uint32_t> quotas(w.Members.size(), Options.PatchBudget);
+    SimplifyResult simplified = Simplify(merged, int(w.Members.size()),
+      [&locator](const double p[3]) { return locator.MemberOf(p); }, quotas);
+    w.Error = simplified.Error;
+    w.Collapses = simplified.Collapses;
+    w.QuotasMet = simplified.QuotasMet;
+    w.Patches.resize(w.Members.size());
+    for (std::size_t i = 0; i < w.Members.size(); ++i)
+    {
+      w.Patches[i].Mesh = std::move(simplified.Regions[i]);
+      Finish(w.Patches[i]);
+    }
+  }
+
+  /// Runs on the main thread, in diamond order: stores the patches and saturates errors,
+  /// spheres and cones over the diamond and its children (paper 5.2).
+  void SaturateDiamond(DiamondWork& w, bool haveParents)
+  {
+    double childError = 0;
+    double childSaturatedError = 0;
+    std::vector<Sphere> spheres;
+    for (std::size_t i = 0; i < w.Members.size(); ++i)
+    {
+      const NodeIndex m = w.Members[i];
+      Store(m, w.Patches[i], haveParents);
+      spheres.push_back(LoadSphere(Results[std::size_t(m)].Sphere));
+      std::vector<NormalCone> cones{ w.Patches[i].Cone };
+      for (NodeIndex c : Forest[m].Children)
+      {
+        NodeResult& child = Results[std::size_t(c)];
+        childError = std::max(childError, child.Error);
+        childSaturatedError = std::max(childSaturatedError, child.SaturatedError);
+        spheres.push_back(LoadSphere(child.SaturatedSphere));
+        cones.push_back(child.Cone);
+        Intermediate.Release(child.Intermediate);
+      }
+      Results[std::size_t(m)].Cone = EnclosingCone(cones);
+    }
+    // The merged input was already off the original by up to its children's error.
+    const double error = w.Error + childError;
+    const double saturatedError = std::max(error, childSaturatedError);
+    float saturatedSphere[4];
+    StoreSphere(EnclosingSphere(spheres), saturatedSphere);
+    for (NodeIndex m : w.Members)
+    {
+      NodeResult& r = Results[std::size_t(m)];
+      r.Error = error;
+      r.SaturatedError = saturatedError;
+      std::copy(saturatedSphere, saturatedSphere + 4, r.SaturatedSphere);
+    }
+    ++Stats.Diamonds;
+    Stats.Collapses += w.Collapses;
+    Stats.QuotaMisses += !w.QuotasMet;
+    w.Patches.clear();
+  }
+
+  /// Nodes in file order: by level, then by the Morton code of their centroid, so the
+  /// tetrahedra a cut visits together lie together in the file.
+  std::vector<NodeIndex> FileOrder() const
+  {
+    std::vector<std::pair<std::pair<int, std::uint64_t>, std::uint64_t>> keys(Forest.Size());
+    for (NodeIndex n = 0; n < NodeIndex(Forest.Size()); ++n)
+    {
+      keys[std::size_t(n)] = { { Forest[n].Id.Level(), CentroidMorton(Forest[n].Geometry) },
+        Forest[n].Id.Bits };
+    }
+    std::vector<NodeIndex> order(Forest.Size());
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(),
+      [&keys](NodeIndex a, NodeIndex b) { return keys[std::size_t(a)] < keys[std::size_t(b)]; });
+    return order;
+  }
+
+  void Write(const std::string& outputPath)
+  {
+    const std::vector<NodeIndex> order = FileOrder();
+    std::vector<std::int32_t> fileIndex(Forest.Size());
+    for (std::size_t i = 0; i < order.size(); ++i)
+    {
+      fileIndex[std::size_t(order[i])] = std::int32_t(i);
+    }
+    std::vector<ModelNode> nodes(order.size());
+    ModelWriter writer(outputPath, order.size());
+    std::vector<std::uint8_t> bytes;
+    for (std::size_t i = 0; i < order.size(); ++i)
+    {
+      const TetraForest::Node& tet = Forest[order[i]];
+      const NodeResult& r = Results[std::size_t(order[i])];
+      ModelNode& node = nodes[i];
+      std::memset(&node, 0, sizeof(node));
+      node.Tet = tet.Id.Bits;
+      node.TriangleCount = r.Triangles;
+      node.VertexCount = r.Vertices;
+      node.Parent = tet.Parent == TetraForest::None ? -1 : fileIndex[std::size_t(tet.Parent)];
+      for (int c = 0; c < 2; ++c)
+      {
+        node.Children[c] = tet.IsLeaf() ? -1 : fileIndex[std::size_t(tet.Children[c])];
+      }
+      std::copy(r.Sphere, r.Sphere + 4, node.Sphere);
+      StoreCone(r.Cone, node.ConeAxis, node.ConeCos);
+      node.Error = float(r.Error);
+      node.SaturatedError = float(r.SaturatedError);
+      std::copy(r.SaturatedSphere, r.SaturatedSphere + 4, node.SaturatedSphere);
+      bytes.resize(r.EncodedBytes);
+      Encoded.ReadAt(r.EncodedOffset, bytes.data(), bytes.size());
+      writer.AddPatch(bytes.data(), bytes.size());
+    }
+    ModelHeader header;
+    std::memset(&header, 0, sizeof(header));
+    for (int a = 0; a < 3; ++a)
+    {
+      header.BoxMin[a] = Bounds.Min[a];
+      header.BoxMax[a] = Bounds.Max[a];
+      header.LatticeOrigin[a] = Partition.Frame().Origin()[a];
+      header.QuantizationOrigin[a] = Grid.Origin[a];
+    }
+    header.LatticeScale = Partition.Frame().Scale();
+    header.QuantizationStep = Grid.Step;
+    header.InputTriangles = Input.TrianglesEmitted;
+    header.InputBoundaryEdges = Input.BoundaryEdges;
+    header.StoredTriangles = Stats.StoredTriangles;
+    header.LeafCapacity = Partition.Options().LeafCapacity;
+    header.PatchBudget = Options.PatchBudget;
+    header.Depth = std::uint32_t(Forest.Depth());
+    header.ErrorScale = Options.ErrorScale;
+    writer.Commit(header, nodes);
+
+    Stats.Nodes = nodes.size();
+    Stats.Depth = Forest.Depth();
+    Stats.FileBytes = std::filesystem::file_size(outputPath);
+    Stats.CoarsestError = 0;
+    for (NodeIndex root = 0; root < RootCount; ++root)
+    {
+      Stats.CoarsestError = std::max(Stats.CoarsestError, Results[std::size_t(root)].SaturatedError);
+    }
+    if (Progress)
+    {
+      Progress(1);
+    }
+  }
+
+  Partitioner& Partition;
+  const TetraForest& Forest;
+  const Box Bounds;
+  const InputStats Input;
+  const ConstructionOptions Options;
+  const ConstructionProgress& Progress;
+  const int Threads;
+  const QuantizationGrid Grid;
+  PatchStore Intermediate;
+  ScratchFile Encoded;
+  std::uint64_t EncodedEnd = 0;
+  std::vector<NodeResult> Results;
+  std::size_t Done = 0;
+  ConstructionStats Stats;
+};
+
+} // namespace
+
+ConstructionStats BuildModel(Partitioner& partition, const Box& bounds, const InputStats& input,
+  const ConstructionOptions& options, const std::string& outputPath,
+  const ConstructionProgress& progress)
+{
+  ModelConstruction construction(partition, bounds, input, options, progress);
+  return construction.Run(outputPath);
+}
+
+} // namespace atp

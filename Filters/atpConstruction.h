@@ -1,0 +1,54 @@
+// Construction of the multiresolution model from a partitioned mesh (paper, section 5.2):
+// bottom-up, level by level, every diamond merges its children's patches, simplifies them with
+// its external boundary locked and one quota per member, and gets saturated errors and bounds;
+// every patch is encoded, and the nodes and patches are written to one .atp file.
+#ifndef atpConstruction_h
+#define atpConstruction_h
+
+#include "atpPartitioner.h"
+#include "vtkATPFiltersModule.h"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+namespace atp
+{
+
+struct ConstructionOptions
+{
+  /// Most triangles a tetrahedron of a simplified level holds (paper: a few thousand).
+  std::uint32_t PatchBudget = 2000;
+  int Threads = 0; ///< 0: every core
+  std::string ScratchDirectory;
+  /// Stored in the model: screen-space error = ErrorScale * projected object-space error.
+  float ErrorScale = 1;
+};
+
+struct ConstructionStats
+{
+  std::uint64_t Nodes = 0;
+  std::uint64_t Diamonds = 0;          ///< simplified diamonds
+  std::uint64_t StoredTriangles = 0;   ///< over all levels
+  std::uint64_t Collapses = 0;
+  /// Diamonds where locked geometry kept a member above the patch budget (kept, not fatal).
+  std::uint64_t QuotaMisses = 0;
+  std::uint64_t PatchBytes = 0;        ///< encoded patches
+  std::uint64_t FileBytes = 0;
+  std::uint64_t PeakScratchBytes = 0;  ///< intermediate patches and encoded patches on disk
+  double CoarsestError = 0;            ///< saturated object-space error of the roots
+  int Depth = 0;
+};
+
+/// Called with the fraction done; it may throw to cancel (nothing is written then).
+using ConstructionProgress = std::function<void(double fraction)>;
+
+/// Builds the model and writes it to `outputPath` (atomically: a temporary file renamed at the
+/// end). Consumes the partition's buckets. Throws std::runtime_error on failure.
+VTKATPFILTERS_EXPORT ConstructionStats BuildModel(Partitioner& partition, const Box& bounds,
+  const InputStats& input, const ConstructionOptions& options, const std::string& outputPath,
+  const ConstructionProgress& progress = {});
+
+} // namespace atp
+
+#endif

@@ -1,0 +1,36 @@
+// Which member tetrahedron of a diamond a point belongs to: the simplifier's regions.
+#ifndef atpMemberLocator_h
+#define atpMemberLocator_h
+
+#include "atpTetra.h"
+#include "vtkATPFiltersModule.h"
+
+#include <array>
+#include <vector>
+
+namespace atp
+{
+
+class VTKATPFILTERS_EXPORT MemberLocator
+{
+public:
+  MemberLocator(const std::vector<Tetra>& members, const LatticeFrame& frame);
+
+  /// The member holding p (world coordinates). A point on a shared face goes to the lower
+  /// index; a point outside the diamond (a simplified triangle's centroid may leave it) to the
+  /// member it is least outside of.
+  int MemberOf(const double p[3]) const;
+
+private:
+  /// Per member: barycentric coordinates as an affine map of the lattice point.
+  struct Barycentric
+  {
+    std::array<std::array<double, 4>, 4> Rows;
+  };
+  std::vector<Barycentric> Members;
+  LatticeFrame Frame;
+};
+
+} // namespace atp
+
+#endif

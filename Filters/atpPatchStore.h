@@ -1,0 +1,46 @@
+// Full-precision patches waiting for their parent diamond, in a scratch file: construction keeps
+// only the diamonds it is working on in memory, whatever the size of the model.
+#ifndef atpPatchStore_h
+#define atpPatchStore_h
+
+#include "atpPatchMesh.h"
+#include "atpScratchFile.h"
+#include "vtkATPFiltersModule.h"
+
+#include <cstdint>
+#include <string>
+
+namespace atp
+{
+
+class VTKATPFILTERS_EXPORT PatchStore
+{
+public:
+  struct Handle
+  {
+    std::uint64_t Offset = 0;
+    std::uint64_t Bytes = 0;
+  };
+
+  explicit PatchStore(const std::string& scratchDirectory);
+
+  /// Appends a patch (one writer thread). Throws std::runtime_error when the disk is full.
+  Handle Put(const PatchMesh& patch);
+  /// Reads a patch back; safe from several threads at once.
+  void Get(const Handle& handle, PatchMesh& out) const;
+  /// Gives the patch's disk blocks back to the file system: it will not be read again.
+  void Release(const Handle& handle);
+
+  std::uint64_t BytesWritten() const { return End; }
+  std::uint64_t PeakBytes() const { return Peak; }
+
+private:
+  ScratchFile File;
+  std::uint64_t End = 0;
+  std::uint64_t Live = 0;
+  std::uint64_t Peak = 0;
+};
+
+} // namespace atp
+
+#endif

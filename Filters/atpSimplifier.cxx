@@ -1,0 +1,1032 @@
+#include "atpSimplifier.h"
+
+#include "atpQuadric.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace atp
+{
+
+namespace
+{
+
+constexpr std::uint32_t None = ~0u;
+/// An original-boundary edge adds the plane through it, perpendicular to its triangle, with this
+/// weight times its squared length (the triangle planes weigh their area): the outline of a hole
+/// moves only where moving it costs about as little as flattening the surface does.
+constexpr double BoundaryPlaneWeight = 10;
+/// A collapse may not leave a triangle whose angle at the moved corner has a sine below 1e-6.
+constexpr double DegenerateSine2 = 1e-12;
+/// At most 3 normal components and 4 color channels.
+constexpr int MaxAttributes = 7;
+
+enum class VertexKind : std::uint8_t
+{
+  Free,     ///< interior manifold vertex: may collapse onto any neighbor
+  Boundary, ///< on the original boundary: collapses only along it
+  Locked,   ///< diamond-external boundary, non-manifold, or unused: never moves
+  Removed   ///< collapsed
+};
+
+struct HeapEntry
+{
+  double Cost;
+  std::uint32_t Vertex;
+  std::uint32_t Version; ///< stale when the vertex was evaluated again since
+};
+
+/// std heap functions build a max-heap: "after" puts the cheapest first, ties by vertex.
+struct HeapAfter
+{
+  bool operator()(const HeapEntry& a, const HeapEntry& b) const
+  {
+    return a.Cost > b.Cost || (a.Cost == b.Cost && a.Vertex > b.Vertex);
+  }
+};
+
+struct Candidate
+{
+  double Cost;
+  std::uint32_t Target;
+  int Region; ///< the queue it waits in: the region of a triangle it removes
+  /// 0: removes triangles of regions over quota only, 1: some, 2: none.
+  int Rank;
+};
+
+inline int NextCorner(int k)
+{
+  return k == 2 ? 0 : k + 1;
+}
+inline int PrevCorner(int k)
+{
+  return k == 0 ? 2 : k - 1;
+}
+
+inline void Sub(const double* a, const double* b, double* out)
+{
+  out[0] = a[0] - b[0];
+  out[1] = a[1] - b[1];
+  out[2] = a[2] - b[2];
+}
+inline void Cross(const double* a, const double* b, double* out)
+{
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+inline double Dot(const double* a, const double* b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/// One call's state. Vertex fans are singly linked lists of corners (corner = 3 * triangle + k)
+/// that drop removed triangles lazily as they are walked; a collapse splices the moving vertex's
+/// list into the target's, so nothing is allocated per collapse.
+class Simplifier
+{
+public:
+  Simplifier(const PatchMesh& mesh, int regionCount, const RegionFunction& regionOf,
+    const std::vector<std::uint32_t>& quotas, const SimplifyOptions& options);
+  SimplifyResult Run();
+
+private:
+  void LinkCorners();
+  void AssignRegions();
+  void Classify(std::uint32_t u);
+  void BuildQuadrics();
+  void GatherFan(std::uint32_t u, std::vector<std::uint32_t>& fan);
+  bool CanCollapse(std::uint32_t u, std::uint32_t v);
+  /// Queues u's cheapest collapse; only a legal one when checkLegal, otherwise legality is
+  /// checked when it comes out of the queue (most evaluations are superseded before that).
+  void Evaluate(std::uint32_t u, bool checkLegal);
+  /// Change of the total excess over the quotas if u moves onto v; fills MovedRegions.
+  std::int64_t ExcessChange(std::uint32_t u, std::uint32_t v);
+  void Collapse(std::uint32_t u, std::uint32_t v);
+  void FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, std::uint32_t w);
+  int RegionOf(const double point[3]) const;
+  bool OverQuota(int r) const { return Counts[std::size_t(r)] > std::int64_t(Quotas[std::size_t(r)]); }
+  bool Contains(std::uint32_t t, std::uint32_t v) const
+  {
+    return Indices[3 * t] == v || Indices[3 * t + 1] == v || Indices[3 * t + 2] == v;
+  }
+  /// Bit index of the edge between vertices a and b of triangle t.
+  int EdgeBit(std::uint32_t t, std::uint32_t a, std::uint32_t b) const;
+  const double* Position(std::uint32_t v) const { return &P[3 * std::size_t(v)]; }
+  PatchMesh Extract(const std::vector<std::uint32_t>& triangles);
+
+  const PatchMesh& Mesh;
+  const int RegionCount;
+  const RegionFunction& RegionFn;
+  const std::vector<std::uint32_t>& Quotas;
+  const std::size_t VertexCount;
+  const std::size_t TriangleCount;
+
+  std::vector<std::uint32_t> Indices;   // working copy
+  std::vector<std::uint8_t> Bits;       // working BoundaryEdges
+  std::vector<std::uint8_t> TriangleRemoved;
+  std::vector<int> TriangleRegion;
+  std::vector<std::uint32_t> FirstCorner; // per vertex
+  std::vector<std::uint32_t> Link;        // per corner: the next corner of the same vertex
+
+  double Origin[3] = { 0, 0, 0 };
+  double Scale = 1; // bounding box diagonal: positions are normalized by it
+  int Attributes = 0;
+  bool HasNormals = false;
+  std::vector<double> P;  // normalized positions
+  std::vector<double> S;  // weighted attributes, Attributes per vertex
+  std::vector<Quadric> Q; // area-weighted plane + attribute-field quadric (collapse order)
+  std::vector<double> QA; // its attribute part
+  std::vector<Quadric> QErr; // unweighted plane quadric (the Error bound)
+  std::vector<double> Weight; // total weight of the planes in Q
+  std::vector<VertexKind> Kind;
+  std::vector<std::uint32_t> Target;
+  std::vector<std::uint32_t> Version;
+
+  std::vector<std::vector<HeapEntry>> Queues; // per region
+  std::vector<std::int64_t> Counts;           // live triangles per region
+  std::int64_t Excess = 0;                    // sum over regions of max(0, count - quota)
+  /// Collapses that would also remove triangles of regions within their quotas wait here, and
+  /// are taken only when the over-quota regions have nothing else left (Relaxed).
+  std::vector<std::uint32_t> Deferred;
+  bool Relaxed = false;
+  double MaxError2 = 0;
+  std::size_t Collapses = 0;
+
+  // Scratch, reused by every collapse: stamps make clearing unnecessary.
+  std::vector<std::uint32_t> Fan;
+  std::vector<std::uint32_t> Neighbors;
+  std::vector<Candidate> Candidates;
+  std::vector<int> MovedRegions;
+  std::vector<std::int64_t> Delta;
+  std::vector<int> Touched;
+  std::vector<std::uint32_t> MarkU, CountU, MarkV, CountV, SlotU;
+  std::uint32_t StampU = 0, StampV = 0;
+};
+
+Simplifier::Simplifier(const PatchMesh& mesh, int regionCount, const RegionFunction& regionOf,
+  const std::vector<std::uint32_t>& quotas, const SimplifyOptions& options)
+  : Mesh(mesh)
+  , RegionCount(regionCount)
+  , RegionFn(regionOf)
+  , Quotas(quotas)
+  , VertexCount(mesh.VertexCount())
+  , TriangleCount(mesh.TriangleCount())
+{
+  if (regionCount < 1 || quotas.size() != std::size_t(regionCount))
+  {
+    throw std::invalid_argument("Simplify: need one quota per region");
+  }
+  Indices = mesh.Indices;
+  Bits.assign(TriangleCount, 0);
+  std::copy_n(mesh.BoundaryEdges.begin(), std::min(mesh.BoundaryEdges.size(), TriangleCount),
+    Bits.begin());
+
+  double lo[3] = { 1e300, 1e300, 1e300 };
+  double hi[3] = { -1e300, -1e300, -1e300 };
+  for (std::size_t i = 0; i < 3 * VertexCount; ++i)
+  {
+    lo[i % 3] = std::min(lo[i % 3], double(mesh.Positions[i]));
+    hi[i % 3] = std::max(hi[i % 3], double(mesh.Positions[i]));
+  }
+  if (VertexCount > 0)
+  {
+    const double diagonal = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) +
+      (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    Scale = diagonal > 0 ? diagonal : 1;
+    std::copy(lo, lo + 3, Origin);
+  }
+  P.resize(3 * VertexCount);
+  for (std::size_t i = 0; i < 3 * VertexCount; ++i)
+  {
+    P[i] = (mesh.Positions[i] - Origin[i % 3]) / Scale;
+  }
+
+  HasNormals = mesh.Normals.size() == 3 * VertexCount;
+  const bool normals = options.NormalWeight > 0 && HasNormals;
+  const bool colors = options.ColorWeight > 0 && mesh.Colors.size() == 4 * VertexCount;
+  Attributes = (normals ? 3 : 0) + (colors ? 4 : 0);
+  S.resize(std::size_t(Attributes) * VertexCount);
+  for (std::size_t v = 0; v < VertexCount; ++v)
+  {
+    double* s = &S[std::size_t(Attributes) * v];
+    if (normals)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        *s++ = options.NormalWeight * mesh.Normals[3 * v + std::size_t(j)];
+      }
+    }
+    if (colors)
+    {
+      for (int j = 0; j < 4; ++j)
+      {
+        *s++ = options.ColorWeight * mesh.Colors[4 * v + std::size_t(j)] / 255.0;
+      }
+    }
+  }
+
+  Kind.assign(VertexCount, VertexKind::Locked);
+  Target.assign(VertexCount, None);
+  Version.assign(VertexCount, 0);
+  MarkU.assign(VertexCount, 0);
+  CountU.assign(VertexCount, 0);
+  MarkV.assign(VertexCount, 0);
+  CountV.assign(VertexCount, 0);
+  SlotU.assign(VertexCount, 0);
+  Queues.resize(std::size_t(regionCount));
+  Counts.assign(std::size_t(regionCount), 0);
+  Delta.assign(std::size_t(regionCount), 0);
+}
+
+int Simplifier::RegionOf(const double point[3]) const
+{
+  const int r = RegionFn(point);
+  if (r < 0 || r >= RegionCount)
+  {
+    throw std::invalid_argument("Simplify: the region function returned a region out of range");
+  }
+  return r;
+}
+
+int Simplifier::EdgeBit(std::uint32_t t, std::uint32_t a, std::uint32_t b) const
+{
+  const std::uint32_t* tri = &Indices[3 * std::size_t(t)];
+  const int ka = tri[0] == a ? 0 : (tri[1] == a ? 1 : 2);
+  return tri[NextCorner(ka)] == b ? ka : PrevCorner(ka);
+}
+
+void Simplifier::LinkCorners()
+{
+  // Triangles with a repeated corner are degenerate: they take no part.
+  TriangleRemoved.assign(TriangleCount, 0);
+  FirstCorner.assign(VertexCount, None);
+  Link.assign(3 * TriangleCount, None);
+  for (std::size_t c = 3 * TriangleCount; c-- > 0;)
+  {
+    const std::size_t t = c / 3;
+    const std::uint32_t* tri = &Indices[3 * t];
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0])
+    {
+      TriangleRemoved[t] = 1;
+      continue;
+    }
+    Link[c] = FirstCorner[Indices[c]];
+    FirstCorner[Indices[c]] = std::uint32_t(c);
+  }
+}
+
+void Simplifier::AssignRegions()
+{
+  TriangleRegion.assign(TriangleCount, 0);
+  for (std::size_t t = 0; t < TriangleCount; ++t)
+  {
+    if (TriangleRemoved[t])
+    {
+      continue;
+    }
+    if (RegionCount == 1)
+    {
+      ++Counts[0];
+      continue;
+    }
+    double centroid[3] = { 0, 0, 0 };
+    for (int k = 0; k < 3; ++k)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        centroid[a] += double(Mesh.Positions[3 * std::size_t(Indices[3 * t + std::size_t(k)]) + std::size_t(a)]);
+      }
+    }
+    for (double& x : centroid)
+    {
+      x /= 3;
+    }
+    TriangleRegion[t] = RegionOf(centroid);
+    ++Counts[std::size_t(TriangleRegion[t])];
+  }
+  for (int r = 0; r < RegionCount; ++r)
+  {
+    Excess += std::max<std::int64_t>(0, Counts[std::size_t(r)] - std::int64_t(Quotas[std::size_t(r)]));
+  }
+}
+
+void Simplifier::GatherFan(std::uint32_t u, std::vector<std::uint32_t>& fan)
+{
+  fan.clear();
+  std::uint32_t* link = &FirstCorner[u];
+  while (*link != None)
+  {
+    const std::uint32_t c = *link;
+    if (TriangleRemoved[c / 3])
+    {
+      *link = Link[c];
+      continue;
+    }
+    fan.push_back(c);
+    link = &Link[c];
+  }
+}
+
+// A vertex may move only if its fan is one consistently oriented disk (Free) or half-disk whose
+// two open edges are original boundary (Boundary). It also clears stale bits on interior edges
+// (a boundary edge of one input patch can be interior once patches are welded).
+void Simplifier::Classify(std::uint32_t u)
+{
+  GatherFan(u, Fan);
+  if (Fan.empty())
+  {
+    return; // unused vertex: stays Locked
+  }
+  ++StampU;
+  // CountU: times a neighbor is the next corner (edge u->x), CountV: the previous (edge x->u);
+  // SlotU: the fan index of the triangle where it is the next corner.
+  auto touch = [&](std::uint32_t x) {
+    if (MarkU[x] != StampU)
+    {
+      MarkU[x] = StampU;
+      CountU[x] = 0;
+      CountV[x] = 0;
+    }
+  };
+  for (std::size_t i = 0; i < Fan.size(); ++i)
+  {
+    const std::uint32_t t = Fan[i] / 3;
+    const int k = int(Fan[i] % 3);
+    const std::uint32_t x = Indices[3 * t + std::uint32_t(NextCorner(k))];
+    const std::uint32_t y = Indices[3 * t + std::uint32_t(PrevCorner(k))];
+    touch(x);
+    touch(y);
+    ++CountU[x];
+    ++CountV[y];
+    SlotU[x] = std::uint32_t(i);
+  }
+  bool locked = false;
+  int open = 0;
+  std::size_t start = 0;
+  for (std::size_t i = 0; i < Fan.size(); ++i)
+  {
+    const std::uint32_t t = Fan[i] / 3;
+    const int k = int(Fan[i] % 3);
+    const std::uint32_t x = Indices[3 * t + std::uint32_t(NextCorner(k))];
+    const std::uint32_t y = Indices[3 * t + std::uint32_t(PrevCorner(k))];
+    locked = locked || CountU[x] > 1 || CountV[x] > 1;
+    if (CountV[x] == 0)
+    {
+      ++open;
+      start = i;
+      locked = locked || !(Bits[t] & (1u << k));
+    }
+    else
+    {
+      Bits[t] &= std::uint8_t(~(1u << k));
+    }
+    if (CountU[y] == 0)
+    {
+      ++open;
+      locked = locked || !(Bits[t] & (1u << PrevCorner(k)));
+    }
+    else
+    {
+      Bits[t] &= std::uint8_t(~(1u << PrevCorner(k)));
+    }
+  }
+  if (locked || (open != 0 && open != 2))
+  {
+    return;
+  }
+  // Walk around u from the start of the half-disk (or anywhere on a disk): one fan visits all.
+  std::size_t visited = 1;
+  for (std::size_t i = start; visited <= Fan.size(); ++visited)
+  {
+    const std::uint32_t t = Fan[i] / 3;
+    const std::uint32_t y = Indices[3 * t + std::uint32_t(PrevCorner(int(Fan[i] % 3)))];
+    if (CountU[y] == 0 || SlotU[y] == start)
+    {
+      break;
+    }
+    i = SlotU[y];
+  }
+  if (visited == Fan.size())
+  {
+    Kind[u] = open ? VertexKind::Boundary : VertexKind::Free;
+  }
+}
+
+void Simplifier::BuildQuadrics()
+{
+  const std::size_t stride = AttributeQuadric::Stride(Attributes);
+  Q.assign(VertexCount, Quadric());
+  QErr.assign(VertexCount, Quadric());
+  QA.assign(stride * VertexCount, 0.0);
+  Weight.assign(VertexCount, 0.0);
+  std::vector<double> triangleAttributes(stride);
+  for (std::size_t t = 0; t < TriangleCount; ++t)
+  {
+    if (TriangleRemoved[t])
+    {
+      continue;
+    }
+    const std::uint32_t* tri = &Indices[3 * t];
+    const double* p0 = Position(tri[0]);
+    double e1[3], e2[3], n[3];
+    Sub(Position(tri[1]), p0, e1);
+    Sub(Position(tri[2]), p0, e2);
+    Cross(e1, e2, n);
+    const double length = std::sqrt(Dot(n, n));
+    if (length == 0)
+    {
+      continue; // no plane to speak of
+    }
+    for (double& x : n)
+    {
+      x /= length;
+    }
+    const double d = -Dot(n, p0);
+    const double area = 0.5 * length;
+
+    // Hoppe's linear attribute field over the triangle: g.p + d equals the attribute at the
+    // corners, with g in the triangle's plane.
+    Quadric q;
+    q.AddPlane(n, d, area);
+    std::fill(triangleAttributes.begin(), triangleAttributes.end(), 0.0);
+    if (Attributes > 0)
+    {
+      double c1[3], c2[3];
+      Cross(e2, n, c1);
+      Cross(n, e1, c2);
+      double g[3 * MaxAttributes], offset[MaxAttributes];
+      const double* s0 = &S[std::size_t(Attributes) * tri[0]];
+      const double* s1 = &S[std::size_t(Attributes) * tri[1]];
+      const double* s2 = &S[std::size_t(Attributes) * tri[2]];
+      for (int j = 0; j < Attributes; ++j)
+      {
+        const double d1 = (s1[j] - s0[j]) / length;
+        const double d2 = (s2[j] - s0[j]) / length;
+        for (int a = 0; a < 3; ++a)
+        {
+          g[3 * j + a] = d1 * c1[a] + d2 * c2[a];
+        }
+        offset[j] = s0[j] - Dot(g + 3 * j, p0);
+      }
+      AttributeQuadric::AddField(q, triangleAttributes.data(), Attributes, g, offset, area);
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      Q[tri[k]].Add(q);
+      Weight[tri[k]] += area;
+      AttributeQuadric::Add(&QA[stride * tri[k]], triangleAttributes.data(), Attributes);
+      QErr[tri[k]].AddPlane(n, d, 1);
+    }
+
+    for (int k = 0; k < 3; ++k)
+    {
+      if (!(Bits[t] & (1u << k)))
+      {
+        continue;
+      }
+      const std::uint32_t a = tri[k], b = tri[NextCorner(k)];
+      double edge[3], m[3];
+      Sub(Position(b), Position(a), edge);
+      Cross(edge, n, m);
+      const double mLength = std::sqrt(Dot(m, m));
+      if (mLength == 0)
+      {
+        continue;
+      }
+      for (double& x : m)
+      {
+        x /= mLength;
+      }
+      const double md = -Dot(m, Position(a));
+      const double w = BoundaryPlaneWeight * Dot(edge, edge);
+      for (std::uint32_t v : { a, b })
+      {
+        Q[v].AddPlane(m, md, w);
+        Weight[v] += w;
+        QErr[v].AddPlane(m, md, 1);
+      }
+    }
+  }
+}
+
+// u -> v is legal when: the edge is manifold (1 or 2 triangles), the link condition holds (the
+// only common neighbors are the opposite corners), no edge from v to an opposite corner is
+// non-manifold, no triangle is removed with both other edges open (an isolated triangle would
+// vanish), the mesh is not a tetrahedron-like pocket (a moved triangle would duplicate one of
+// v), and no moved triangle flips, degenerates or faces against its corners' input normals.
+// Fan must hold u's fan.
+bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
+{
+  ++StampV;
+  for (std::uint32_t c = FirstCorner[v]; c != None; c = Link[c])
+  {
+    const std::uint32_t t = c / 3;
+    if (TriangleRemoved[t])
+    {
+      continue;
+    }
+    const int k = int(c % 3);
+    for (std::uint32_t x : { Indices[3 * t + std::uint32_t(NextCorner(k))], Indices[3 * t + std::uint32_t(PrevCorner(k))] })
+    {
+      if (MarkV[x] != StampV)
+      {
+        MarkV[x] = StampV;
+        CountV[x] = 0;
+      }
+      ++CountV[x];
+    }
+  }
+
+  std::uint32_t opposite[2] = { None, None };
+  int opposites = 0;
+  ++StampU;
+  for (std::uint32_t c : Fan)
+  {
+    const std::uint32_t t = c / 3;
+    const int k = int(c % 3);
+    const std::uint32_t x = Indices[3 * t + std::uint32_t(NextCorner(k))];
+    const std::uint32_t y = Indices[3 * t + std::uint32_t(PrevCorner(k))];
+    if (x == v || y == v)
+    {
+      if (opposites == 2)
+      {
+        return false;
+      }
+      opposite[opposites++] = x == v ? y : x;
+    }
+    for (std::uint32_t z : { x, y })
+    {
+      if (MarkU[z] != StampU)
+      {
+        MarkU[z] = StampU;
+        CountU[z] = 0;
+      }
+      ++CountU[z];
+    }
+  }
+  if (opposites == 0)
+  {
+    return false;
+  }
+  for (int i = 0; i < opposites; ++i)
+  {
+    const std::uint32_t w = opposite[i];
+    if (CountV[w] > 2 || (CountV[w] == 1 && CountU[w] == 1))
+    {
+      return false;
+    }
+  }
+
+  const double* pu = Position(u);
+  const double* pv = Position(v);
+  bool movesPocket = false;
+  for (std::uint32_t c : Fan)
+  {
+    const std::uint32_t t = c / 3;
+    const int k = int(c % 3);
+    const std::uint32_t x = Indices[3 * t + std::uint32_t(NextCorner(k))];
+    const std::uint32_t y = Indices[3 * t + std::uint32_t(PrevCorner(k))];
+    if (x == v || y == v)
+    {
+      continue;
+    }
+    for (std::uint32_t z : { x, y })
+    {
+      if (MarkV[z] == StampV && z != opposite[0] && z != opposite[1])
+      {
+        return false;
+      }
+    }
+    movesPocket = movesPocket || (opposites == 2 && MarkV[x] == StampV && MarkV[y] == StampV);
+
+    const double* px = Position(x);
+    const double* py = Position(y);
+    double a[3], b[3], before[3], after[3];
+    Sub(px, pu, a);
+    Sub(py, pu, b);
+    Cross(a, b, before);
+    Sub(px, pv, a);
+    Sub(py, pv, b);
+    Cross(a, b, after);
+    const double area2 = Dot(after, after);
+    if (Dot(before, after) <= 0 || area2 <= DegenerateSine2 * Dot(a, a) * Dot(b, b))
+    {
+      return false;
+    }
+    // Small turns, each allowed, add up to folds: the face must also agree with the input
+    // normals of its corners (which it keeps for shading).
+    if (HasNormals)
+    {
+      for (std::uint32_t z : { v, x, y })
+      {
+        const float* nz = &Mesh.Normals[3 * std::size_t(z)];
+        if (after[0] * nz[0] + after[1] * nz[1] + after[2] * nz[2] <= 0)
+        {
+          return false;
+        }
+      }
+    }
+  }
+  if (movesPocket)
+  {
+    // A moved triangle becomes (v, a, b) with a, b the opposite corners: it must not exist yet.
+    for (std::uint32_t c = FirstCorner[v]; c != None; c = Link[c])
+    {
+      const std::uint32_t t = c / 3;
+      if (!TriangleRemoved[t] && !Contains(t, u) && Contains(t, opposite[0]) && Contains(t, opposite[1]))
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+// Finds u's cheapest collapse, preferring those that remove triangles of regions over their
+// quotas only, and queues it in such a region's queue.
+void Simplifier::Evaluate(std::uint32_t u, bool checkLegal)
+{
+  if (Kind[u] != VertexKind::Free && Kind[u] != VertexKind::Boundary)
+  {
+    return;
+  }
+  ++Version[u];
+  GatherFan(u, Fan);
+  Candidates.clear();
+  const std::size_t stride = AttributeQuadric::Stride(Attributes);
+  const double* qa = &QA[stride * u];
+  auto add = [&](std::uint32_t target, int regionA, int regionB) {
+    const double* p = Position(target);
+    Candidate candidate;
+    candidate.Cost = (Q[u].Evaluate(p) +
+      AttributeQuadric::Evaluate(qa, Attributes, p, &S[std::size_t(Attributes) * target])) /
+      std::max(Weight[u], 1e-300);
+    candidate.Target = target;
+    candidate.Rank = 2 - int(OverQuota(regionA)) - int(OverQuota(regionB));
+    candidate.Region = OverQuota(regionA) || !OverQuota(regionB) ? regionA : regionB;
+    Candidates.push_back(candidate);
+  };
+  if (Kind[u] == VertexKind::Free)
+  {
+    // Each neighbor is the next corner of one triangle and the previous corner of another:
+    // the two triangles the collapse removes.
+    ++StampU;
+    for (std::uint32_t c : Fan)
+    {
+      const std::uint32_t t = c / 3;
+      MarkU[Indices[3 * t + std::uint32_t(PrevCorner(int(c % 3)))]] = StampU;
+      SlotU[Indices[3 * t + std::uint32_t(PrevCorner(int(c % 3)))]] = t;
+    }
+    for (std::uint32_t c : Fan)
+    {
+      const std::uint32_t t = c / 3;
+      const std::uint32_t x = Indices[3 * t + std::uint32_t(NextCorner(int(c % 3)))];
+      const int other = MarkU[x] == StampU ? TriangleRegion[SlotU[x]] : TriangleRegion[t];
+      add(x, TriangleRegion[t], other);
+    }
+  }
+  else
+  {
+    for (std::uint32_t c : Fan)
+    {
+      const std::uint32_t t = c / 3;
+      const int k = int(c % 3);
+      if (Bits[t] & (1u << k))
+      {
+        add(Indices[3 * t + std::uint32_t(NextCorner(k))], TriangleRegion[t], TriangleRegion[t]);
+      }
+      if (Bits[t] & (1u << PrevCorner(k)))
+      {
+        add(Indices[3 * t + std::uint32_t(PrevCorner(k))], TriangleRegion[t], TriangleRegion[t]);
+      }
+    }
+  }
+  const auto before = [](const Candidate& a, const Candidate& b) {
+    if (a.Rank != b.Rank)
+    {
+      return a.Rank < b.Rank;
+    }
+    return a.Cost < b.Cost || (a.Cost == b.Cost && a.Target < b.Target);
+  };
+  const Candidate* chosen = nullptr;
+  if (!checkLegal)
+  {
+    chosen = Candidates.empty() ? nullptr : &*std::min_element(Candidates.begin(), Candidates.end(), before);
+  }
+  else
+  {
+    std::sort(Candidates.begin(), Candidates.end(), before);
+    for (const Candidate& candidate : Candidates)
+    {
+      if (CanCollapse(u, candidate.Target))
+      {
+        chosen = &candidate;
+        break;
+      }
+    }
+  }
+  if (chosen)
+  {
+    Target[u] = chosen->Target;
+    std::vector<HeapEntry>& queue = Queues[std::size_t(chosen->Region)];
+    queue.push_back({ chosen->Cost, u, Version[u] });
+    std::push_heap(queue.begin(), queue.end(), HeapAfter());
+  }
+}
+
+std::int64_t Simplifier::ExcessChange(std::uint32_t u, std::uint32_t v)
+{
+  Touched.clear();
+  MovedRegions.clear();
+  auto change = [&](int r, std::int64_t d) {
+    if (Delta[std::size_t(r)] == 0 && std::find(Touched.begin(), Touched.end(), r) == Touched.end())
+    {
+      Touched.push_back(r);
+    }
+    Delta[std::size_t(r)] += d;
+  };
+  const float* pv = &Mesh.Positions[3 * std::size_t(v)];
+  for (std::uint32_t c : Fan)
+  {
+    const std::uint32_t t = c / 3;
+    if (Contains(t, v))
+    {
+      change(TriangleRegion[t], -1);
+      MovedRegions.push_back(-1);
+      continue;
+    }
+    if (RegionCount == 1)
+    {
+      MovedRegions.push_back(0); // nothing to ask
+      continue;
+    }
+    double centroid[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      double sum = double(pv[a]);
+      for (int k = 0; k < 3; ++k)
+      {
+        const std::uint32_t x = Indices[3 * t + std::uint32_t(k)];
+        sum += x == u ? 0.0 : double(Mesh.Positions[3 * std::size_t(x) + std::size_t(a)]);
+      }
+      centroid[a] = sum / 3;
+    }
+    const int r = RegionOf(centroid);
+    MovedRegions.push_back(r);
+    if (r != TriangleRegion[t])
+    {
+      change(TriangleRegion[t], -1);
+      change(r, +1);
+    }
+  }
+  std::int64_t result = 0;
+  for (int r : Touched)
+  {
+    const std::int64_t count = Counts[std::size_t(r)];
+    const std::int64_t quota = std::int64_t(Quotas[std::size_t(r)]);
+    result += std::max<std::int64_t>(0, count + Delta[std::size_t(r)] - quota) -
+      std::max<std::int64_t>(0, count - quota);
+  }
+  return result;
+}
+
+// The removed triangle t = (u, v, w): its edges v-w and w-u become one. When exactly one of them
+// was open, the survivor carries that edge's boundary bit.
+void Simplifier::FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, std::uint32_t w)
+{
+  std::uint32_t acrossWU = None, acrossVW = None;
+  for (std::uint32_t c : Fan)
+  {
+    const std::uint32_t s = c / 3;
+    if (s != t && !Contains(s, v) && Contains(s, w))
+    {
+      acrossWU = s;
+    }
+  }
+  for (std::uint32_t c = FirstCorner[v]; c != None; c = Link[c])
+  {
+    const std::uint32_t s = c / 3;
+    if (s != t && !TriangleRemoved[s] && !Contains(s, u) && Contains(s, w))
+    {
+      acrossVW = s;
+    }
+  }
+  if (acrossWU != None && acrossVW == None && (Bits[t] & (1u << EdgeBit(t, v, w))))
+  {
+    Bits[acrossWU] |= std::uint8_t(1u << EdgeBit(acrossWU, u, w));
+  }
+  if (acrossVW != None && acrossWU == None && (Bits[t] & (1u << EdgeBit(t, w, u))))
+  {
+    Bits[acrossVW] |= std::uint8_t(1u << EdgeBit(acrossVW, v, w));
+  }
+}
+
+// Moves u onto v; Fan holds u's fan and MovedRegions the new region of each of its triangles.
+void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
+{
+  for (std::uint32_t c : Fan)
+  {
+    const std::uint32_t t = c / 3;
+    if (Contains(t, v))
+    {
+      const std::uint32_t* tri = &Indices[3 * t];
+      const std::uint32_t w = tri[0] != u && tri[0] != v ? tri[0] : (tri[1] != u && tri[1] != v ? tri[1] : tri[2]);
+      FixOpenEdge(t, u, v, w);
+    }
+  }
+  std::uint32_t head = FirstCorner[v];
+  for (std::size_t i = Fan.size(); i-- > 0;)
+  {
+    const std::uint32_t c = Fan[i];
+    const std::uint32_t t = c / 3;
+    --Counts[std::size_t(TriangleRegion[t])];
+    if (MovedRegions[i] < 0)
+    {
+      TriangleRemoved[t] = 1;
+      continue;
+    }
+    Indices[c] = v;
+    TriangleRegion[t] = MovedRegions[i];
+    ++Counts[std::size_t(MovedRegions[i])];
+    Link[c] = head;
+    head = c;
+  }
+  FirstCorner[v] = head;
+  FirstCorner[u] = None;
+  Kind[u] = VertexKind::Removed;
+  ++Version[u];
+
+  Q[v].Add(Q[u]);
+  QErr[v].Add(QErr[u]);
+  const std::size_t stride = AttributeQuadric::Stride(Attributes);
+  AttributeQuadric::Add(&QA[stride * v], &QA[stride * u], Attributes);
+  Weight[v] += Weight[u];
+  MaxError2 = std::max(MaxError2, QErr[v].Evaluate(Position(v)));
+  ++Collapses;
+}
+
+SimplifyResult Simplifier::Run()
+{
+  LinkCorners();
+  AssignRegions();
+  for (std::uint32_t v = 0; v < VertexCount; ++v)
+  {
+    Classify(v);
+  }
+  BuildQuadrics();
+  if (Excess > 0)
+  {
+    for (std::uint32_t v = 0; v < VertexCount; ++v)
+    {
+      Evaluate(v, false);
+    }
+  }
+
+  while (Excess > 0)
+  {
+    // The cheapest collapse waiting for any region over its quota.
+    int best = -1;
+    for (int r = 0; r < RegionCount; ++r)
+    {
+      std::vector<HeapEntry>& queue = Queues[std::size_t(r)];
+      while (!queue.empty() && queue.front().Version != Version[queue.front().Vertex])
+      {
+        std::pop_heap(queue.begin(), queue.end(), HeapAfter());
+        queue.pop_back();
+      }
+      if (OverQuota(r) && !queue.empty() &&
+        (best < 0 || HeapAfter()(Queues[std::size_t(best)].front(), queue.front())))
+      {
+        best = r;
+      }
+    }
+    if (best < 0)
+    {
+      if (Relaxed || Deferred.empty())
+      {
+        break;
+      }
+      Relaxed = true;
+      for (std::uint32_t u : Deferred)
+      {
+        Evaluate(u, false);
+      }
+      continue;
+    }
+    std::vector<HeapEntry>& queue = Queues[std::size_t(best)];
+    const std::uint32_t u = queue.front().Vertex;
+    std::pop_heap(queue.begin(), queue.end(), HeapAfter());
+    queue.pop_back();
+    const std::uint32_t v = Target[u];
+    GatherFan(u, Fan);
+    if (!CanCollapse(u, v))
+    {
+      Evaluate(u, true);
+      continue;
+    }
+    const std::int64_t change = ExcessChange(u, v);
+    bool takesFromSatisfied = false;
+    for (int r : Touched)
+    {
+      takesFromSatisfied = takesFromSatisfied || (Delta[std::size_t(r)] < 0 && !OverQuota(r));
+      Delta[std::size_t(r)] = 0;
+    }
+    if (change >= 0 || (takesFromSatisfied && !Relaxed))
+    {
+      // It would only shift triangles between regions, or eat into a region that already
+      // meets its quota (allowed only when nothing else is left): u waits for new neighbors.
+      ++Version[u];
+      if (change < 0)
+      {
+        Deferred.push_back(u);
+      }
+      continue;
+    }
+    // The costs are u's quadric at its targets' positions: only u's neighbors lose a target (u)
+    // and gain one (v), and only v's quadric changes. Legality is checked when popped.
+    ++StampV;
+    Neighbors.clear();
+    for (std::uint32_t c : Fan)
+    {
+      const std::uint32_t t = c / 3;
+      for (int k = 0; k < 3; ++k)
+      {
+        const std::uint32_t x = Indices[3 * t + std::uint32_t(k)];
+        if (x != u && MarkV[x] != StampV)
+        {
+          MarkV[x] = StampV;
+          Neighbors.push_back(x);
+        }
+      }
+    }
+    Collapse(u, v);
+    Excess += change;
+    for (std::uint32_t x : Neighbors)
+    {
+      Evaluate(x, false);
+    }
+  }
+
+  SimplifyResult result;
+  result.Error = std::sqrt(std::max(0.0, MaxError2)) * Scale;
+  result.Collapses = Collapses;
+  result.QuotasMet = Excess == 0;
+  std::vector<std::vector<std::uint32_t>> byRegion(static_cast<std::size_t>(RegionCount));
+  for (std::uint32_t t = 0; t < TriangleCount; ++t)
+  {
+    if (!TriangleRemoved[t])
+    {
+      byRegion[std::size_t(TriangleRegion[t])].push_back(t);
+    }
+  }
+  for (int r = 0; r < RegionCount; ++r)
+  {
+    result.Regions.push_back(Extract(byRegion[std::size_t(r)]));
+  }
+  return result;
+}
+
+PatchMesh Simplifier::Extract(const std::vector<std::uint32_t>& triangles)
+{
+  PatchMesh out;
+  const bool normals = Mesh.Normals.size() == 3 * VertexCount;
+  const bool colors = Mesh.Colors.size() == 4 * VertexCount;
+  // MarkU/SlotU map input vertices to output ones, stamped per region.
+  ++StampU;
+  for (std::uint32_t t : triangles)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t v = Indices[3 * t + std::uint32_t(k)];
+      if (MarkU[v] != StampU)
+      {
+        MarkU[v] = StampU;
+        SlotU[v] = std::uint32_t(out.VertexCount());
+        out.Positions.insert(out.Positions.end(), &Mesh.Positions[3 * std::size_t(v)], &Mesh.Positions[3 * std::size_t(v)] + 3);
+        if (normals)
+        {
+          out.Normals.insert(out.Normals.end(), &Mesh.Normals[3 * std::size_t(v)], &Mesh.Normals[3 * std::size_t(v)] + 3);
+        }
+        if (colors)
+        {
+          out.Colors.insert(out.Colors.end(), &Mesh.Colors[4 * std::size_t(v)], &Mesh.Colors[4 * std::size_t(v)] + 4);
+        }
+      }
+      out.Indices.push_back(SlotU[v]);
+    }
+    out.BoundaryEdges.push_back(Bits[t]);
+  }
+  return out;
+}
+
+} // namespace
+
+SimplifyResult Simplify(const PatchMesh& mesh, int regionCount, const RegionFunction& regionOf,
+  const std::vector<std::uint32_t>& quotas, const SimplifyOptions& options)
+{
+  return Simplifier(mesh, regionCount, regionOf, quotas, options).Run();
+}
+
+} // namespace atp

@@ -1,0 +1,64 @@
+// The constrained simplifier of a diamond (paper, sections 3 and 5.2): half-edge collapses
+// ordered by a quadric error with normals and colors, the diamond-external boundary locked, the
+// original boundary kept as a polyline that only loses vertices, and a triangle quota per region
+// (per member tetrahedron of the diamond).
+#ifndef atpSimplifier_h
+#define atpSimplifier_h
+
+#include "atpPatchMesh.h"
+#include "vtkATPFiltersModule.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace atp
+{
+
+/// The region (0..regionCount-1) of a triangle, from its centroid in input coordinates.
+using RegionFunction = std::function<int(const double point[3])>;
+
+struct SimplifyOptions
+{
+  /// Weight of a unit normal deviation against a position deviation of the mesh's bounding box
+  /// diagonal: a normal off by 0.1 costs like the position off by 0.1 * NormalWeight diagonals.
+  /// Small, so that shading guides the order of collapses without trading away geometry.
+  double NormalWeight = 0.005;
+  /// The same for colors, each channel scaled to [0, 1].
+  double ColorWeight = 0.005;
+};
+
+struct SimplifyResult
+{
+  /// One compact mesh per region: its triangles in input order, the vertices they use in order
+  /// of first use, and the BoundaryEdges bits of its triangles.
+  std::vector<PatchMesh> Regions;
+  /// Conservative object-space error of the result against the input of this call: the largest,
+  /// over all collapses, of the square root of the unweighted position quadric of the surviving
+  /// vertex at its position. That bounds the distance from the vertex to every input triangle
+  /// plane (and original-boundary edge plane) it has absorbed. 0 when nothing collapsed.
+  double Error = 0;
+  std::size_t Collapses = 0;
+  /// False when locked or topologically constrained geometry keeps a region over its quota.
+  bool QuotasMet = true;
+};
+
+/// Simplifies `mesh` by half-edge collapses until every region holds at most quotas[region]
+/// triangles (a triangle belongs to regionOf(its centroid)). Every output vertex is an input
+/// vertex with its exact position, normal and color. Vertices on diamond-external boundary edges
+/// (open edges whose BoundaryEdges bit is clear), on non-manifold edges or with a non-manifold
+/// fan never move; a vertex on the original boundary (bit set) only collapses along it. No
+/// collapse flips or degenerates a triangle, turns a face against the input normals of its
+/// corners, or breaks manifoldness (link condition).
+/// Deterministic and reentrant: concurrent calls on different meshes are safe. regionOf is
+/// not called when regionCount is 1.
+/// Triangles with a repeated corner are dropped from the input. Throws std::invalid_argument
+/// when quotas.size() != regionCount or regionOf returns a region out of range.
+VTKATPFILTERS_EXPORT SimplifyResult Simplify(const PatchMesh& mesh, int regionCount,
+  const RegionFunction& regionOf, const std::vector<std::uint32_t>& quotas,
+  const SimplifyOptions& options = {});
+
+} // namespace atp
+
+#endif

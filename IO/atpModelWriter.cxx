@@ -1,0 +1,286 @@
+#include "atpModelWriter.h"
+
+#include "atpChecksum.h"
+
+#include <xxhash.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstddef>
+#include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <fstream>
+#include <new>
+#include <stdexcept>
+#include <string>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace atp
+{
+namespace
+{
+// Patches are gathered into large writes; a bigger patch is written on its own.
+constexpr std::size_t BufferBytes = std::size_t(8) << 20;
+
+std::uint64_t AlignUp(std::uint64_t value, std::uint64_t alignment)
+{
+  return (value + alignment - 1) / alignment * alignment;
+}
+
+std::string DirectoryOf(const std::string& path)
+{
+  const std::size_t slash = path.find_last_of('/');
+  if (slash == std::string::npos)
+  {
+    return ".";
+  }
+  return slash == 0 ? "/" : path.substr(0, slash);
+}
+
+// The process umask without umask()'s set-and-restore, which races with other threads creating
+// files. Linux reports it in /proc/self/status; elsewhere assume the usual 022.
+mode_t CurrentUmask()
+{
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+  {
+    if (line.compare(0, 6, "Umask:") == 0)
+    {
+      return mode_t(std::strtoul(line.c_str() + 6, nullptr, 8));
+    }
+  }
+  return 022;
+}
+} // namespace
+
+struct ModelWriter::SectionHash
+{
+  XXH3_state_t* State = XXH3_createState();
+  ~SectionHash() { XXH3_freeState(State); }
+};
+
+std::uint64_t ModelWriter::NodeSectionOffset()
+{
+  return AlignUp(sizeof(ModelHeader), 64);
+}
+
+std::uint64_t ModelWriter::PatchSectionOffset(std::uint64_t nodeCount)
+{
+  return AlignUp(NodeSectionOffset() + nodeCount * sizeof(ModelNode), 64);
+}
+
+ModelWriter::ModelWriter(const std::string& path, std::uint64_t nodeCount)
+  : Path(path)
+  , NodeCount(nodeCount)
+  , PatchStart(PatchSectionOffset(nodeCount))
+  , Hash(new SectionHash)
+{
+  if (!Hash->State || XXH3_64bits_reset(Hash->State) != XXH_OK)
+  {
+    throw std::bad_alloc();
+  }
+  std::string name = path + ".partial-XXXXXX";
+  std::vector<char> buffer(name.begin(), name.end());
+  buffer.push_back('\0');
+  Fd = ::mkstemp(buffer.data());
+  if (Fd < 0)
+  {
+    Fail(errno);
+  }
+  TempPath = buffer.data();
+  // mkstemp makes the file private (0600); the model should get a new file's usual mode.
+  if (::fchmod(Fd, 0666 & ~CurrentUmask()) != 0)
+  {
+    Fail(errno);
+  }
+  Buffer.reserve(BufferBytes);
+  Patches.reserve(nodeCount);
+}
+
+ModelWriter::~ModelWriter()
+{
+  if (Fd >= 0)
+  {
+    ::close(Fd);
+  }
+  if (!Finished && !TempPath.empty())
+  {
+    ::unlink(TempPath.c_str());
+  }
+}
+
+void ModelWriter::Fail(int err)
+{
+  if (Fd >= 0)
+  {
+    ::close(Fd);
+    Fd = -1;
+  }
+  if (!TempPath.empty())
+  {
+    ::unlink(TempPath.c_str());
+  }
+  Finished = true;
+  throw std::runtime_error("cannot write " + Path + ": " + std::strerror(err));
+}
+
+void ModelWriter::RequireOpen() const
+{
+  if (Finished)
+  {
+    throw std::logic_error("ModelWriter for " + Path + " is already committed or failed");
+  }
+}
+
+void ModelWriter::WriteAt(std::uint64_t offset, const void* data, std::size_t bytes)
+{
+  const char* p = static_cast<const char*>(data);
+  while (bytes > 0)
+  {
+    const ssize_t n = ::pwrite(Fd, p, bytes, off_t(offset));
+    if (n < 0 && errno == EINTR)
+    {
+      continue;
+    }
+    if (n < 0)
+    {
+      Fail(errno);
+    }
+    if (n == 0)
+    {
+      Fail(ENOSPC);
+    }
+    p += n;
+    offset += std::uint64_t(n);
+    bytes -= std::size_t(n);
+  }
+}
+
+void ModelWriter::Flush()
+{
+  if (!Buffer.empty())
+  {
+    WriteAt(PatchStart + WrittenEnd, Buffer.data(), Buffer.size());
+    WrittenEnd += Buffer.size();
+    Buffer.clear();
+  }
+}
+
+void ModelWriter::AddPatch(const void* data, std::size_t bytes)
+{
+  RequireOpen();
+  if (Patches.size() >= NodeCount)
+  {
+    throw std::logic_error("ModelWriter for " + Path + ": more patches than the " +
+      std::to_string(NodeCount) + " nodes");
+  }
+  if (bytes > UINT32_MAX)
+  {
+    throw std::length_error("ModelWriter for " + Path + ": a patch of " + std::to_string(bytes) +
+      " bytes exceeds the format's 4 GiB limit");
+  }
+  Patches.push_back({ PatchEnd, Checksum(data, bytes), std::uint32_t(bytes) });
+
+  // Zero padding keeps every patch start aligned for the decoders; the section checksum covers
+  // it, so the padding is part of the hashed stream.
+  static const std::uint8_t zeros[PatchAlignment] = {};
+  const std::size_t padding = std::size_t(AlignUp(bytes, PatchAlignment) - bytes);
+  XXH3_64bits_update(Hash->State, data, bytes);
+  XXH3_64bits_update(Hash->State, zeros, padding);
+  if (Buffer.size() + bytes + padding > BufferBytes)
+  {
+    Flush();
+  }
+  if (bytes + padding > BufferBytes)
+  {
+    WriteAt(PatchStart + WrittenEnd, data, bytes);
+    WriteAt(PatchStart + WrittenEnd + bytes, zeros, padding);
+    WrittenEnd += bytes + padding;
+  }
+  else
+  {
+    const std::uint8_t* p = static_cast<const std::uint8_t*>(data);
+    Buffer.insert(Buffer.end(), p, p + bytes);
+    Buffer.insert(Buffer.end(), zeros, zeros + padding);
+  }
+  PatchEnd += bytes + padding;
+}
+
+void ModelWriter::Commit(ModelHeader header, std::vector<ModelNode>& nodes)
+{
+  RequireOpen();
+  if (nodes.size() != NodeCount || Patches.size() != NodeCount)
+  {
+    throw std::logic_error("ModelWriter for " + Path + ": " + std::to_string(NodeCount) +
+      " nodes expected, got " + std::to_string(nodes.size()) + " nodes and " +
+      std::to_string(Patches.size()) + " patches");
+  }
+  Flush();
+
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+  {
+    nodes[i].PatchOffset = Patches[i].Offset;
+    nodes[i].PatchBytes = Patches[i].Bytes;
+    nodes[i].PatchChecksum = Patches[i].Checksum;
+    std::fill(std::begin(nodes[i].Reserved), std::end(nodes[i].Reserved), std::uint8_t(0));
+  }
+  const std::size_t nodeBytes = nodes.size() * sizeof(ModelNode);
+
+  std::memcpy(header.Magic, ModelMagic, sizeof(header.Magic));
+  header.Version = ModelVersion;
+  header.ByteOrder = ModelByteOrderMark;
+  header.HeaderBytes = sizeof(ModelHeader);
+  header.NodeBytes = sizeof(ModelNode);
+  header.NodeCount = NodeCount;
+  header.NodeSectionOffset = NodeSectionOffset();
+  header.NodeSectionBytes = nodeBytes;
+  header.PatchSectionOffset = PatchStart;
+  header.PatchSectionBytes = PatchEnd;
+  header.FileBytes = PatchStart + PatchEnd;
+  header.NodeSectionChecksum = Checksum(nodes.data(), nodeBytes);
+  header.PatchSectionChecksum = XXH3_64bits_digest(Hash->State);
+  std::fill(std::begin(header.Reserved), std::end(header.Reserved), std::uint8_t(0));
+  header.HeaderChecksum = Checksum(&header, offsetof(ModelHeader, HeaderChecksum));
+
+  // Gaps between sections were never written and read back as zeros; ftruncate sets the exact
+  // length even when the last patches are empty.
+  WriteAt(header.NodeSectionOffset, nodes.data(), nodeBytes);
+  WriteAt(0, &header, sizeof(header));
+  if (::ftruncate(Fd, off_t(header.FileBytes)) != 0 || ::fsync(Fd) != 0)
+  {
+    Fail(errno);
+  }
+  const int fd = Fd;
+  Fd = -1;
+  if (::close(fd) != 0)
+  {
+    Fail(errno);
+  }
+  if (::rename(TempPath.c_str(), Path.c_str()) != 0)
+  {
+    Fail(errno);
+  }
+  Finished = true;
+
+  // The rename is durable only once the directory is on disk. The model is already in place
+  // here, so a failure is reported but nothing is removed.
+  const std::string directory = DirectoryOf(Path);
+  const int dirFd = ::open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dirFd < 0)
+  {
+    throw std::runtime_error("cannot write " + Path + ": " + std::strerror(errno));
+  }
+  // Some file systems cannot sync a directory (EINVAL); they have nothing to flush.
+  const int synced = ::fsync(dirFd);
+  const int err = errno;
+  ::close(dirFd);
+  if (synced != 0 && err != EINVAL)
+  {
+    throw std::runtime_error("cannot write " + Path + ": " + std::strerror(err));
+  }
+}
+
+} // namespace atp

@@ -1,0 +1,61 @@
+// The compact encoding of one patch in the .atp patch repository.
+//
+// Layout (little-endian): a PatchHeaderBytes header, then four streams back to back:
+//   u8  format version (PatchFormatVersion)   u8 flags (PatchFlag*)
+//   u32 vertex count   u32 triangle count
+//   u32 patch minimum grid point x, y, z
+//   u32 byte sizes of the index, position, normal and color streams
+// - indices: meshopt_encodeIndexBuffer of the vertex-cache-ordered triangle list;
+// - positions: meshopt_encodeVertexBuffer of 3 x u32 per vertex, the QuantizationGrid integers
+//   minus the patch minimum (small numbers: their high bytes are zero and cost almost nothing);
+// - normals: meshopt_encodeVertexBuffer of 2 x i16 octahedral (EncodeNormal of
+//   atpNormalEncoding.h, the encoding the input normals already went through, so it is lossless
+//   for them; below 0.005 degrees for any unit normal);
+// - colors: meshopt_encodeVertexBuffer of RGBA8, only with PatchFlagColors.
+// An empty patch is the header alone.
+#ifndef atpPatchCodec_h
+#define atpPatchCodec_h
+
+#include "atpPatchMesh.h"
+#include "atpQuantizationGrid.h"
+#include "vtkATPIOModule.h" // export macro
+
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+namespace atp
+{
+
+constexpr std::uint8_t PatchFormatVersion = 1;
+constexpr std::uint8_t PatchFlagColors = 1u; ///< a color stream follows the normals
+constexpr std::size_t PatchHeaderBytes = 38;
+/// Hard caps a decoder checks before allocating (patches hold a few thousand triangles).
+constexpr std::uint32_t MaxPatchVertices = 1u << 24;
+constexpr std::uint32_t MaxPatchTriangles = 1u << 24;
+
+/// A patch's bytes are not a valid encoding; the message says what is wrong.
+class VTKATPIO_EXPORT PatchFormatError : public std::runtime_error
+{
+public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Reorders triangles for the vertex cache and vertices for fetch order (vertices no triangle
+/// uses are dropped), quantizes positions on `grid`, and encodes. BoundaryEdges is not stored.
+/// Throws std::invalid_argument for an inconsistent mesh (array sizes, indices out of range,
+/// counts over the caps).
+VTKATPIO_EXPORT std::vector<std::uint8_t> EncodePatch(
+  const PatchMesh& mesh, const QuantizationGrid& grid);
+
+/// Decodes into `out`, reusing its capacity: positions through grid.Dequantize, unit normals,
+/// colors when stored, indices all below the vertex count; BoundaryEdges is left empty.
+/// Safe on any bytes: throws PatchFormatError (leaving `out` unspecified) for anything but a
+/// valid encoding, checking counts against the byte size before allocating.
+VTKATPIO_EXPORT void DecodePatch(
+  const std::uint8_t* data, std::size_t bytes, const QuantizationGrid& grid, PatchMesh& out);
+
+} // namespace atp
+
+#endif

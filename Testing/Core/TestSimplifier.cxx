@@ -1,0 +1,497 @@
+// The constrained simplifier and the patch merge: locked and original boundaries, topology,
+// quotas, triangle quality, exact vertices, determinism, error.
+#include "atpMergePatches.h"
+#include "atpSimplifier.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <set>
+#include <thread>
+
+using namespace atp;
+
+namespace
+{
+
+using Edge = std::pair<std::uint32_t, std::uint32_t>; // directed: corner i -> corner i+1
+using PositionKey = std::array<std::uint32_t, 3>;
+
+PositionKey KeyOf(const PatchMesh& mesh, std::uint32_t v)
+{
+  PositionKey key;
+  std::memcpy(key.data(), &mesh.Positions[3 * std::size_t(v)], sizeof(key));
+  return key;
+}
+
+/// Area-weighted vertex normals.
+void ComputeNormals(PatchMesh& mesh)
+{
+  std::vector<double> sum(mesh.Positions.size(), 0.0);
+  for (std::size_t t = 0; t < mesh.TriangleCount(); ++t)
+  {
+    const float* p[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      p[k] = &mesh.Positions[3 * std::size_t(mesh.Indices[3 * t + std::size_t(k)])];
+    }
+    const double a[3] = { p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] };
+    const double b[3] = { p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] };
+    const double n[3] = { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+    for (int k = 0; k < 3; ++k)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        sum[3 * std::size_t(mesh.Indices[3 * t + std::size_t(k)]) + std::size_t(c)] += n[c];
+      }
+    }
+  }
+  mesh.Normals.resize(mesh.Positions.size());
+  for (std::size_t v = 0; v < mesh.VertexCount(); ++v)
+  {
+    const double l = std::sqrt(sum[3 * v] * sum[3 * v] + sum[3 * v + 1] * sum[3 * v + 1] + sum[3 * v + 2] * sum[3 * v + 2]);
+    for (int c = 0; c < 3; ++c)
+    {
+      mesh.Normals[3 * v + std::size_t(c)] = l > 0 ? float(sum[3 * v + std::size_t(c)] / l) : 0.f;
+    }
+  }
+}
+
+/// Sets the BoundaryEdges bit of every open edge when `original`, clears all otherwise
+/// (then every open edge is diamond-external).
+void MarkOpenEdges(PatchMesh& mesh, bool original)
+{
+  std::map<Edge, int> uses;
+  for (std::size_t t = 0; t < mesh.TriangleCount(); ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t a = mesh.Indices[3 * t + std::size_t(k)];
+      const std::uint32_t b = mesh.Indices[3 * t + std::size_t((k + 1) % 3)];
+      ++uses[{ std::min(a, b), std::max(a, b) }];
+    }
+  }
+  mesh.BoundaryEdges.assign(mesh.TriangleCount(), 0);
+  for (std::size_t t = 0; t < mesh.TriangleCount() && original; ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t a = mesh.Indices[3 * t + std::size_t(k)];
+      const std::uint32_t b = mesh.Indices[3 * t + std::size_t((k + 1) % 3)];
+      if (uses[{ std::min(a, b), std::max(a, b) }] == 1)
+      {
+        mesh.BoundaryEdges[t] |= std::uint8_t(1u << k);
+      }
+    }
+  }
+}
+
+/// An n x n grid over [0, 1]^2, z = height(x, y), open edges marked original or external.
+template <typename Height>
+PatchMesh Grid(int n, Height height, bool originalBoundary)
+{
+  PatchMesh mesh;
+  for (int j = 0; j <= n; ++j)
+  {
+    for (int i = 0; i <= n; ++i)
+    {
+      const double x = double(i) / n, y = double(j) / n;
+      mesh.Positions.insert(mesh.Positions.end(), { float(x), float(y), float(height(x, y)) });
+    }
+  }
+  for (int j = 0; j < n; ++j)
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      const std::uint32_t a = std::uint32_t(j * (n + 1) + i), b = a + 1, c = a + std::uint32_t(n) + 1, d = c + 1;
+      mesh.Indices.insert(mesh.Indices.end(), { a, b, d, a, d, c });
+    }
+  }
+  ComputeNormals(mesh);
+  MarkOpenEdges(mesh, originalBoundary);
+  return mesh;
+}
+
+double Bumps(double x, double y)
+{
+  return 0.05 * std::sin(9 * x) * std::cos(7 * y) + 0.02 * std::sin(23 * x + 5 * y);
+}
+
+/// A closed torus with bumps and per-vertex colors; genus 1 (Euler characteristic 0).
+PatchMesh BumpyTorus(int nu, int nv)
+{
+  PatchMesh mesh;
+  for (int j = 0; j < nv; ++j)
+  {
+    for (int i = 0; i < nu; ++i)
+    {
+      const double u = 2 * M_PI * i / nu, v = 2 * M_PI * j / nv;
+      const double r = 0.35 + 0.04 * std::sin(5 * u) * std::sin(3 * v);
+      mesh.Positions.insert(mesh.Positions.end(),
+        { float((1 + r * std::cos(v)) * std::cos(u)), float((1 + r * std::cos(v)) * std::sin(u)), float(r * std::sin(v)) });
+      mesh.Colors.insert(mesh.Colors.end(), { std::uint8_t(i * 7), std::uint8_t(j * 13), 128, 255 });
+    }
+  }
+  for (int j = 0; j < nv; ++j)
+  {
+    for (int i = 0; i < nu; ++i)
+    {
+      const auto at = [&](int a, int b) { return std::uint32_t((b % nv) * nu + (a % nu)); };
+      mesh.Indices.insert(mesh.Indices.end(),
+        { at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i, j + 1) });
+    }
+  }
+  ComputeNormals(mesh);
+  MarkOpenEdges(mesh, true);
+  return mesh;
+}
+
+RegionFunction OneRegion()
+{
+  return [](const double*) { return 0; };
+}
+
+/// All regions of a result welded back into one mesh.
+PatchMesh Joined(const SimplifyResult& result)
+{
+  std::vector<const PatchMesh*> parts;
+  for (const PatchMesh& region : result.Regions)
+  {
+    parts.push_back(&region);
+  }
+  return MergePatches(parts);
+}
+
+/// Directed edges with their BoundaryEdges bit.
+std::map<Edge, bool> DirectedEdges(const PatchMesh& mesh)
+{
+  std::map<Edge, bool> edges;
+  for (std::size_t t = 0; t < mesh.TriangleCount(); ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const Edge e{ mesh.Indices[3 * t + std::size_t(k)], mesh.Indices[3 * t + std::size_t((k + 1) % 3)] };
+      EXPECT_TRUE(edges.emplace(e, (mesh.BoundaryEdges[t] >> k) & 1).second) << "edge used twice in one direction";
+    }
+  }
+  return edges;
+}
+
+/// Directed edges whose reverse is absent: the open edges of an oriented mesh.
+std::map<Edge, bool> OpenEdges(const PatchMesh& mesh)
+{
+  std::map<Edge, bool> open;
+  const std::map<Edge, bool> edges = DirectedEdges(mesh);
+  for (const auto& e : edges)
+  {
+    if (!edges.count({ e.first.second, e.first.first }))
+    {
+      open.insert(e);
+    }
+  }
+  return open;
+}
+
+std::size_t TriangleTotal(const SimplifyResult& result)
+{
+  std::size_t n = 0;
+  for (const PatchMesh& region : result.Regions)
+  {
+    n += region.TriangleCount();
+  }
+  return n;
+}
+
+long EulerCharacteristic(const PatchMesh& mesh)
+{
+  std::set<Edge> edges;
+  for (std::size_t t = 0; t < mesh.TriangleCount(); ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t a = mesh.Indices[3 * t + std::size_t(k)], b = mesh.Indices[3 * t + std::size_t((k + 1) % 3)];
+      edges.insert({ std::min(a, b), std::max(a, b) });
+    }
+  }
+  return long(mesh.VertexCount()) - long(edges.size()) + long(mesh.TriangleCount());
+}
+
+} // namespace
+
+TEST(Simplifier, ExternalBoundaryIsLockedBitExact)
+{
+  const PatchMesh mesh = Grid(40, Bumps, false);
+  const std::map<Edge, bool> inputOpen = OpenEdges(mesh);
+  const SimplifyResult result = Simplify(mesh, 1, OneRegion(), { 800 });
+  EXPECT_TRUE(result.QuotasMet);
+  EXPECT_LE(TriangleTotal(result), 800u);
+  const PatchMesh out = Joined(result);
+  std::map<PositionKey, std::uint32_t> outVertex;
+  for (std::uint32_t v = 0; v < out.VertexCount(); ++v)
+  {
+    outVertex[KeyOf(out, v)] = v;
+  }
+  const std::map<Edge, bool> outOpen = OpenEdges(out);
+  EXPECT_EQ(outOpen.size(), inputOpen.size());
+  for (const auto& e : inputOpen)
+  {
+    const auto a = outVertex.find(KeyOf(mesh, e.first.first));
+    const auto b = outVertex.find(KeyOf(mesh, e.first.second));
+    ASSERT_TRUE(a != outVertex.end() && b != outVertex.end()) << "a locked vertex moved";
+    const auto kept = outOpen.find({ a->second, b->second });
+    ASSERT_TRUE(kept != outOpen.end()) << "an external boundary edge is gone";
+    EXPECT_FALSE(kept->second);
+  }
+}
+
+TEST(Simplifier, OriginalBoundaryOnlyLosesVertices)
+{
+  const int n = 40;
+  const PatchMesh mesh = Grid(n, Bumps, true);
+  // Input boundary vertices by their place along the counterclockwise perimeter.
+  std::map<PositionKey, int> perimeter;
+  for (int s = 0; s < 4 * n; ++s)
+  {
+    const int side = s / n, o = s % n;
+    const int i = side == 0 ? o : side == 1 ? n : side == 2 ? n - o : 0;
+    const int j = side == 0 ? 0 : side == 1 ? o : side == 2 ? n : n - o;
+    perimeter[KeyOf(mesh, std::uint32_t(j * (n + 1) + i))] = s;
+  }
+  const SimplifyResult result = Simplify(mesh, 1, OneRegion(), { 200 });
+  EXPECT_TRUE(result.QuotasMet);
+  const PatchMesh out = Joined(result);
+  const std::map<Edge, bool> outOpen = OpenEdges(out);
+  // Bits mark exactly the open edges.
+  for (const auto& e : DirectedEdges(out))
+  {
+    EXPECT_EQ(e.second, outOpen.count(e.first) == 1);
+  }
+  std::set<int> kept;
+  for (const auto& e : outOpen)
+  {
+    const auto a = perimeter.find(KeyOf(out, e.first.first));
+    ASSERT_TRUE(a != perimeter.end()) << "an interior vertex reached the boundary";
+    kept.insert(a->second);
+  }
+  EXPECT_LT(kept.size(), std::size_t(4 * n)) << "the boundary should lose vertices";
+  EXPECT_EQ(outOpen.size(), kept.size()) << "one boundary loop";
+  for (const auto& e : outOpen)
+  {
+    // Each edge joins a kept vertex to the next kept one counterclockwise.
+    const int a = perimeter.at(KeyOf(out, e.first.first));
+    const int b = perimeter.at(KeyOf(out, e.first.second));
+    auto next = kept.upper_bound(a);
+    EXPECT_EQ(next == kept.end() ? *kept.begin() : *next, b);
+  }
+}
+
+TEST(Simplifier, ClosedMeshStaysClosed)
+{
+  const PatchMesh mesh = BumpyTorus(96, 48);
+  ASSERT_EQ(EulerCharacteristic(mesh), 0);
+  const SimplifyResult result = Simplify(mesh, 1, OneRegion(), { 900 });
+  EXPECT_TRUE(result.QuotasMet);
+  EXPECT_LE(TriangleTotal(result), 900u);
+  const PatchMesh out = Joined(result);
+  EXPECT_TRUE(OpenEdges(out).empty());
+  EXPECT_EQ(EulerCharacteristic(out), 0);
+}
+
+TEST(Simplifier, QuotasPerRegion)
+{
+  const PatchMesh mesh = Grid(60, Bumps, true);
+  const RegionFunction side = [](const double p[3]) { return p[0] < 0.4 ? 0 : 1; };
+  const std::vector<std::uint32_t> quotas{ 1000, 300 };
+  const SimplifyResult result = Simplify(mesh, 2, side, quotas);
+  EXPECT_TRUE(result.QuotasMet);
+  for (int r = 0; r < 2; ++r)
+  {
+    const PatchMesh& region = result.Regions[std::size_t(r)];
+    EXPECT_LE(region.TriangleCount(), quotas[std::size_t(r)]);
+    // Each member gets its budget: not simplified far below it.
+    EXPECT_GE(region.TriangleCount() + 8, quotas[std::size_t(r)]);
+    for (std::size_t t = 0; t < region.TriangleCount(); ++t)
+    {
+      double centroid[3] = { 0, 0, 0 };
+      for (int k = 0; k < 3; ++k)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          centroid[c] += region.Positions[3 * std::size_t(region.Indices[3 * t + std::size_t(k)]) + std::size_t(c)] / 3.0;
+        }
+      }
+      EXPECT_EQ(side(centroid), r);
+    }
+  }
+}
+
+TEST(Simplifier, UnreachableQuotaWhenEverythingIsLocked)
+{
+  // A strip one triangle pair wide: every vertex is on the external boundary.
+  PatchMesh mesh;
+  for (int i = 0; i <= 50; ++i)
+  {
+    mesh.Positions.insert(mesh.Positions.end(), { float(i), 0.f, 0.f, float(i), 1.f, 0.f });
+  }
+  for (std::uint32_t i = 0; i < 50; ++i)
+  {
+    mesh.Indices.insert(mesh.Indices.end(), { 2 * i, 2 * i + 2, 2 * i + 3, 2 * i, 2 * i + 3, 2 * i + 1 });
+  }
+  ComputeNormals(mesh);
+  MarkOpenEdges(mesh, false);
+  const SimplifyResult result = Simplify(mesh, 1, OneRegion(), { 10 });
+  EXPECT_FALSE(result.QuotasMet);
+  EXPECT_EQ(result.Collapses, 0u);
+  EXPECT_EQ(TriangleTotal(result), mesh.TriangleCount());
+  EXPECT_EQ(result.Error, 0.0);
+}
+
+TEST(Simplifier, NoFlippedOrDegenerateTrianglesAndExactVertices)
+{
+  const PatchMesh mesh = BumpyTorus(96, 48);
+  std::map<PositionKey, std::uint32_t> inputVertex;
+  for (std::uint32_t v = 0; v < mesh.VertexCount(); ++v)
+  {
+    inputVertex[KeyOf(mesh, v)] = v;
+  }
+  const SimplifyResult result = Simplify(mesh, 1, OneRegion(), { 600 });
+  const PatchMesh& out = result.Regions[0];
+  ASSERT_GT(out.TriangleCount(), 0u);
+  for (std::uint32_t v = 0; v < out.VertexCount(); ++v)
+  {
+    const auto in = inputVertex.find(KeyOf(out, v));
+    ASSERT_TRUE(in != inputVertex.end());
+    EXPECT_EQ(std::memcmp(&out.Normals[3 * v], &mesh.Normals[3 * std::size_t(in->second)], 12), 0);
+    EXPECT_EQ(std::memcmp(&out.Colors[4 * v], &mesh.Colors[4 * std::size_t(in->second)], 4), 0);
+  }
+  for (std::size_t t = 0; t < out.TriangleCount(); ++t)
+  {
+    const std::uint32_t* tri = &out.Indices[3 * t];
+    ASSERT_TRUE(tri[0] != tri[1] && tri[1] != tri[2] && tri[2] != tri[0]);
+    double p[3][3];
+    for (int k = 0; k < 3; ++k)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        p[k][c] = out.Positions[3 * std::size_t(tri[k]) + std::size_t(c)];
+      }
+    }
+    const double a[3] = { p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] };
+    const double b[3] = { p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] };
+    const double n[3] = { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+    const double area = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    EXPECT_GT(area, 1e-8);
+    // Outward: away from the tube's center circle.
+    const double c[3] = { (p[0][0] + p[1][0] + p[2][0]) / 3, (p[0][1] + p[1][1] + p[2][1]) / 3, (p[0][2] + p[1][2] + p[2][2]) / 3 };
+    const double ring = std::sqrt(c[0] * c[0] + c[1] * c[1]);
+    const double out3[3] = { c[0] - c[0] / ring, c[1] - c[1] / ring, c[2] };
+    EXPECT_GT(n[0] * out3[0] + n[1] * out3[1] + n[2] * out3[2], 0.0) << "flipped triangle " << t;
+  }
+}
+
+TEST(Simplifier, DeterministicAcrossRunsAndThreads)
+{
+  const PatchMesh mesh = BumpyTorus(80, 40);
+  const RegionFunction regions = [](const double p[3]) { return p[0] < 0 ? 0 : (p[1] < 0 ? 1 : 2); };
+  const std::vector<std::uint32_t> quotas{ 600, 500, 400 };
+  const SimplifyResult first = Simplify(mesh, 3, regions, quotas);
+  SimplifyResult concurrent[2];
+  std::thread a([&] { concurrent[0] = Simplify(mesh, 3, regions, quotas); });
+  std::thread b([&] { concurrent[1] = Simplify(mesh, 3, regions, quotas); });
+  a.join();
+  b.join();
+  for (const SimplifyResult& other : concurrent)
+  {
+    EXPECT_EQ(other.Error, first.Error);
+    EXPECT_EQ(other.Collapses, first.Collapses);
+    for (int r = 0; r < 3; ++r)
+    {
+      const PatchMesh& x = first.Regions[std::size_t(r)];
+      const PatchMesh& y = other.Regions[std::size_t(r)];
+      EXPECT_EQ(x.Positions, y.Positions);
+      EXPECT_EQ(x.Normals, y.Normals);
+      EXPECT_EQ(x.Colors, y.Colors);
+      EXPECT_EQ(x.Indices, y.Indices);
+      EXPECT_EQ(x.BoundaryEdges, y.BoundaryEdges);
+    }
+  }
+}
+
+TEST(MergePatches, WeldsTwoHalvesIntoOneManifold)
+{
+  const PatchMesh grid = Grid(20, Bumps, true);
+  // Split by triangle centroid; each half gets its own compact copy of the vertices it uses.
+  PatchMesh halves[2];
+  std::vector<std::uint32_t> local[2];
+  for (auto& l : local)
+  {
+    l.assign(grid.VertexCount(), ~0u);
+  }
+  for (std::size_t t = 0; t < grid.TriangleCount(); ++t)
+  {
+    double x = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      x += grid.Positions[3 * std::size_t(grid.Indices[3 * t + std::size_t(k)])] / 3.0;
+    }
+    const int h = x < 0.5 ? 0 : 1;
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t v = grid.Indices[3 * t + std::size_t(k)];
+      if (local[h][v] == ~0u)
+      {
+        local[h][v] = std::uint32_t(halves[h].VertexCount());
+        halves[h].Positions.insert(halves[h].Positions.end(), &grid.Positions[3 * v], &grid.Positions[3 * v] + 3);
+        halves[h].Normals.insert(halves[h].Normals.end(), &grid.Normals[3 * v], &grid.Normals[3 * v] + 3);
+      }
+      halves[h].Indices.push_back(local[h][v]);
+    }
+    halves[h].BoundaryEdges.push_back(grid.BoundaryEdges[t]);
+  }
+  ASSERT_EQ(OpenEdges(halves[0]).size() + OpenEdges(halves[1]).size(), OpenEdges(grid).size() + 2 * 20);
+  const PatchMesh merged = MergePatches({ &halves[0], &halves[1] });
+  EXPECT_EQ(merged.VertexCount(), grid.VertexCount());
+  EXPECT_EQ(merged.TriangleCount(), grid.TriangleCount());
+  EXPECT_EQ(OpenEdges(merged).size(), OpenEdges(grid).size());
+  EXPECT_EQ(EulerCharacteristic(merged), 1);
+  for (const auto& e : OpenEdges(merged))
+  {
+    EXPECT_TRUE(e.second) << "an open edge of the merged mesh is the input's boundary";
+  }
+}
+
+TEST(Simplifier, ErrorGrowsAsQuotaFalls)
+{
+  const PatchMesh mesh = Grid(50, Bumps, true);
+  double previous = 0;
+  for (std::uint32_t quota : { 4000u, 2000u, 800u, 300u })
+  {
+    const SimplifyResult result = Simplify(mesh, 1, OneRegion(), { quota });
+    EXPECT_TRUE(result.QuotasMet);
+    EXPECT_GT(result.Error, previous) << quota;
+    previous = result.Error;
+  }
+  EXPECT_LT(previous, 0.1);
+}
+
+TEST(Simplifier, PlanarGridHasNoError)
+{
+  const PatchMesh mesh = Grid(40, [](double, double) { return 0.25; }, false);
+  const SimplifyResult result = Simplify(mesh, 1, OneRegion(), { 300 });
+  EXPECT_TRUE(result.QuotasMet);
+  EXPECT_GT(result.Collapses, 1000u);
+  EXPECT_LT(result.Error, 1e-6);
+}
+
+TEST(Simplifier, EmptyInput)
+{
+  const SimplifyResult result = Simplify(PatchMesh(), 2, OneRegion(), { 0, 5 });
+  ASSERT_EQ(result.Regions.size(), 2u);
+  EXPECT_TRUE(result.QuotasMet);
+  EXPECT_EQ(result.Collapses, 0u);
+  EXPECT_EQ(TriangleTotal(result), 0u);
+  EXPECT_EQ(MergePatches({}).VertexCount(), 0u);
+}

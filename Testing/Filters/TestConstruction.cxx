@@ -1,0 +1,441 @@
+// Construction end to end, checked on the written model: no cracks in any cut, saturated bounds
+// equal over diamonds and monotone, quotas met, vertices never moved, determinism whatever the
+// thread count, corruption detected, and an interrupted build leaves nothing behind.
+#include "atpCut.h"
+#include "atpConstruction.h"
+#include "atpModelFile.h"
+#include "atpPatchCodec.h"
+#include "atpQuantizationGrid.h"
+#include "atpTetra.h"
+#include "vtkATPBuilder.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCellArray.h"
+#include "vtkCommand.h"
+#include "vtkNew.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <map>
+#include <numeric>
+#include <random>
+#include <set>
+#include <unistd.h>
+
+namespace
+{
+using Position = std::array<float, 3>;
+using Edge = std::pair<Position, Position>;
+
+/// A bumpy torus of nu x nv quads (two triangles each); `holes` rectangular holes of 3 x 4 quads
+/// are left out, each giving one boundary loop of 14 edges.
+vtkNew<vtkPolyData> Torus(int nu, int nv, int holes)
+{
+  vtkNew<vtkPoints> points;
+  for (int j = 0; j < nv; ++j)
+  {
+    for (int i = 0; i < nu; ++i)
+    {
+      const double u = 2 * M_PI * i / nu, v = 2 * M_PI * j / nv;
+      const double r = 1 + 0.05 * std::sin(7 * u) * std::cos(5 * v);
+      points->InsertNextPoint((3 + r * std::cos(v)) * std::cos(u),
+        (3 + r * std::cos(v)) * std::sin(u), r * std::sin(v));
+    }
+  }
+  vtkNew<vtkCellArray> triangles;
+  for (int j = 0; j < nv; ++j)
+  {
+    for (int i = 0; i < nu; ++i)
+    {
+      bool inHole = false;
+      for (int h = 0; h < holes; ++h)
+      {
+        const int hi = (h + 1) * nu / (holes + 1), hj = (h * 7) % nv;
+        inHole |= i >= hi && i < hi + 3 && j >= hj && j < hj + 4;
+      }
+      if (inHole)
+      {
+        continue;
+      }
+      const vtkIdType a = j * nu + i, b = j * nu + (i + 1) % nu;
+      const vtkIdType c = ((j + 1) % nv) * nu + (i + 1) % nu, d = ((j + 1) % nv) * nu + i;
+      const vtkIdType t0[3] = { a, b, c }, t1[3] = { a, c, d };
+      triangles->InsertNextCell(3, t0);
+      triangles->InsertNextCell(3, t1);
+    }
+  }
+  vtkNew<vtkPolyData> mesh;
+  mesh->SetPoints(points);
+  mesh->SetPolys(triangles);
+  return mesh;
+}
+
+std::string TempPath(const std::string& name)
+{
+  return "/tmp/atp-test-construction-" + std::to_string(::getpid()) + "-" + name;
+}
+
+std::string ReadBytes(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+void WriteBytes(const std::string& path, const std::string& bytes)
+{
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+int BuildModel(vtkPolyData* mesh, const std::string& path, int threads, int capacity = 400,
+  int budget = 200)
+{
+  vtkNew<vtkATPBuilder> builder;
+  builder->SetInputData(mesh);
+  builder->SetFileName(path.c_str());
+  builder->SetLeafCapacity(capacity);
+  builder->SetPatchBudget(budget);
+  builder->SetNumberOfThreads(threads);
+  const int ok = builder->Build();
+  EXPECT_EQ(ok, 1) << builder->GetErrorMessage();
+  return ok;
+}
+
+atp::QuantizationGrid GridOf(const atp::ModelFile& model)
+{
+  atp::QuantizationGrid grid;
+  for (int a = 0; a < 3; ++a)
+  {
+    grid.Origin[a] = model.Header().QuantizationOrigin[a];
+  }
+  grid.Step = model.Header().QuantizationStep;
+  return grid;
+}
+
+/// Where the input's vertices land after quantization: the only positions a model may hold.
+std::set<Position> QuantizedInput(vtkPolyData* mesh, const atp::QuantizationGrid& grid)
+{
+  std::set<Position> positions;
+  for (vtkIdType i = 0; i < mesh->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    mesh->GetPoint(i, p);
+    const float f[3] = { float(p[0]), float(p[1]), float(p[2]) };
+    const std::array<std::uint32_t, 3> q = grid.Quantize(f);
+    Position out;
+    grid.Dequantize(q.data(), out.data());
+    positions.insert(out);
+  }
+  return positions;
+}
+
+/// Open edges (used by one triangle) of a welded mesh, as position pairs.
+std::vector<Edge> OpenEdges(const atp::PatchMesh& mesh)
+{
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  for (std::size_t t = 0; t < mesh.TriangleCount(); ++t)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      std::uint32_t a = mesh.Indices[3 * t + std::size_t(c)];
+      std::uint32_t b = mesh.Indices[3 * t + std::size_t(c + 1) % 3];
+      ++uses[{ std::min(a, b), std::max(a, b) }];
+    }
+  }
+  std::vector<Edge> open;
+  const auto at = [&mesh](std::uint32_t v) {
+    return Position{ { mesh.Positions[3 * v], mesh.Positions[3 * v + 1], mesh.Positions[3 * v + 2] } };
+  };
+  for (const auto& [edge, count] : uses)
+  {
+    if (count == 1)
+    {
+      open.push_back({ at(edge.first), at(edge.second) });
+    }
+  }
+  return open;
+}
+
+/// Boundary loops: open edges joined at shared vertices (each vertex on two of them).
+int CountLoops(const std::vector<Edge>& edges)
+{
+  std::map<Position, Position> parent;
+  std::function<Position(const Position&)> find = [&](const Position& p) {
+    auto it = parent.find(p);
+    if (it == parent.end() || it->second == p)
+    {
+      parent[p] = p;
+      return p;
+    }
+    return it->second = find(it->second);
+  };
+  for (const Edge& e : edges)
+  {
+    parent[find(e.first)] = find(e.second);
+  }
+  std::set<Position> roots;
+  for (const auto& [p, unused] : parent)
+  {
+    roots.insert(find(p));
+  }
+  return int(roots.size());
+}
+
+class Construction : public ::testing::Test
+{
+protected:
+  static void SetUpTestSuite()
+  {
+    Mesh = vtkPolyData::New();
+    Mesh->DeepCopy(Torus(160, 80, 3));
+    Path = TempPath("torus.atp");
+    ASSERT_EQ(BuildModel(Mesh, Path, 2), 1);
+  }
+  static void TearDownTestSuite()
+  {
+    std::remove(Path.c_str());
+    Mesh->Delete();
+  }
+
+  static vtkPolyData* Mesh;
+  static std::string Path;
+};
+vtkPolyData* Construction::Mesh = nullptr;
+std::string Construction::Path;
+
+} // namespace
+
+TEST_F(Construction, EveryCutIsCrackFree)
+{
+  const atp::ModelFile model = atp::ModelFile::Open(Path);
+  const std::set<Position> input = QuantizedInput(Mesh, GridOf(model));
+  const std::uint64_t inputBoundary = model.Header().InputBoundaryEdges;
+  ASSERT_EQ(inputBoundary, 3u * 14);
+
+  // The finest cut is the input itself: exactly its boundary.
+  const atp::PatchMesh finest = atp::ExtractCut(model, atp::SelectLevel(model, 64));
+  EXPECT_EQ(finest.TriangleCount(), model.Header().InputTriangles);
+  EXPECT_EQ(OpenEdges(finest).size(), inputBoundary);
+
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(-1, 1), tolerance(0.3, 40), distance(0.5, 30);
+  std::set<std::size_t> cutSizes;
+  for (int view = 0; view < 40; ++view)
+  {
+    atp::ViewPoint v;
+    double dir[3] = { unit(random), unit(random), unit(random) };
+    const double length = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    const double d = distance(random);
+    for (int a = 0; a < 3; ++a)
+    {
+      v.Eye[a] = dir[a] / length * d;
+    }
+    v.TolerancePixels = tolerance(random);
+    const std::vector<std::uint32_t> cut = atp::SelectCut(model, v);
+    cutSizes.insert(cut.size());
+    const atp::PatchMesh mesh = atp::ExtractCut(model, cut);
+    // Open edges may only be the input's boundary, possibly simplified along itself: both ends
+    // on the input's boundary vertices, as many loops as the input has holes.
+    const std::vector<Edge> open = OpenEdges(mesh);
+    std::set<Position> boundaryVertices;
+    for (const Edge& e : OpenEdges(finest))
+    {
+      boundaryVertices.insert(e.first);
+      boundaryVertices.insert(e.second);
+    }
+    for (const Edge& e : open)
+    {
+      ASSERT_TRUE(boundaryVertices.count(e.first) && boundaryVertices.count(e.second))
+        << "view " << view << ": a crack (open edge off the input's boundary)";
+    }
+    EXPECT_EQ(CountLoops(open), 3) << "view " << view;
+    EXPECT_LE(open.size(), inputBoundary);
+    for (std::size_t i = 0; i < mesh.VertexCount(); ++i)
+    {
+      const Position p{ { mesh.Positions[3 * i], mesh.Positions[3 * i + 1], mesh.Positions[3 * i + 2] } };
+      ASSERT_TRUE(input.count(p)) << "a vertex that is not an input vertex";
+    }
+  }
+  EXPECT_GT(cutSizes.size(), 10u) << "the views should give many different cuts";
+}
+
+TEST_F(Construction, ClosedSurfaceCutsHaveNoOpenEdge)
+{
+  vtkNew<vtkPolyData> closed;
+  closed->DeepCopy(Torus(120, 60, 0));
+  const std::string path = TempPath("closed.atp");
+  ASSERT_EQ(BuildModel(closed, path, 2, 300, 150), 1);
+  const atp::ModelFile model = atp::ModelFile::Open(path);
+  for (int level = 0; level <= int(model.Header().Depth); ++level)
+  {
+    EXPECT_TRUE(OpenEdges(atp::ExtractCut(model, atp::SelectLevel(model, level))).empty())
+      << "level " << level;
+  }
+  std::remove(path.c_str());
+}
+
+TEST_F(Construction, SaturatedBoundsAreEqualOverDiamondsAndMonotone)
+{
+  const atp::ModelFile model = atp::ModelFile::Open(Path);
+  std::map<std::uint64_t, std::uint32_t> firstOfDiamond;
+  std::size_t sharedDiamonds = 0;
+  for (std::uint32_t i = 0; i < model.NodeCount(); ++i)
+  {
+    const atp::ModelNode& n = model.Node(i);
+    const atp::TetId id{ n.Tet };
+    const auto [it, inserted] = firstOfDiamond.emplace(atp::DiamondOf(atp::TetraOf(id)).Bits, i);
+    if (!inserted)
+    {
+      ++sharedDiamonds;
+      const atp::ModelNode& first = model.Node(it->second);
+      EXPECT_EQ(n.SaturatedError, first.SaturatedError);
+      for (int k = 0; k < 4; ++k)
+      {
+        EXPECT_EQ(n.SaturatedSphere[k], first.SaturatedSphere[k]);
+      }
+    }
+    EXPECT_GE(n.SaturatedError, n.Error);
+    const auto inside = [](const float* inner, const float* outer) {
+      const double d = std::sqrt(double(inner[0] - outer[0]) * (inner[0] - outer[0]) +
+        double(inner[1] - outer[1]) * (inner[1] - outer[1]) +
+        double(inner[2] - outer[2]) * (inner[2] - outer[2]));
+      return d + inner[3] <= outer[3];
+    };
+    EXPECT_TRUE(inside(n.Sphere, n.SaturatedSphere)) << "node " << i;
+    if (n.Parent >= 0)
+    {
+      const atp::ModelNode& parent = model.Node(std::size_t(n.Parent));
+      EXPECT_LE(n.SaturatedError, parent.SaturatedError) << "node " << i;
+      EXPECT_TRUE(inside(n.SaturatedSphere, parent.SaturatedSphere)) << "node " << i;
+    }
+  }
+  EXPECT_GT(sharedDiamonds, model.NodeCount() / 2);
+
+  // Tight spheres hold their patches' vertices.
+  const atp::QuantizationGrid grid = GridOf(model);
+  atp::PatchMesh patch;
+  for (std::uint32_t i = 0; i < model.NodeCount(); ++i)
+  {
+    const atp::ModelNode& n = model.Node(i);
+    atp::DecodePatch(model.PatchData(i), n.PatchBytes, grid, patch);
+    for (std::size_t v = 0; v < patch.VertexCount(); ++v)
+    {
+      const float* p = &patch.Positions[3 * v];
+      const double d = std::sqrt(double(p[0] - n.Sphere[0]) * (p[0] - n.Sphere[0]) +
+        double(p[1] - n.Sphere[1]) * (p[1] - n.Sphere[1]) +
+        double(p[2] - n.Sphere[2]) * (p[2] - n.Sphere[2]));
+      ASSERT_LE(d, n.Sphere[3] + grid.MaxError() * 2) << "node " << i;
+    }
+  }
+}
+
+TEST_F(Construction, QuotasAreMetAndLevelsCoarsen)
+{
+  const atp::ModelFile model = atp::ModelFile::Open(Path);
+  const atp::ModelHeader& h = model.Header();
+  std::uint64_t leafTriangles = 0;
+  for (std::uint32_t i = 0; i < model.NodeCount(); ++i)
+  {
+    const atp::ModelNode& n = model.Node(i);
+    if (n.Children[0] < 0)
+    {
+      leafTriangles += n.TriangleCount;
+      EXPECT_LE(n.TriangleCount, h.LeafCapacity);
+    }
+    else
+    {
+      EXPECT_LE(n.TriangleCount, h.PatchBudget) << "node " << i;
+    }
+  }
+  EXPECT_EQ(leafTriangles, h.InputTriangles);
+  std::size_t previous = SIZE_MAX;
+  for (int level = int(h.Depth); level >= 0; level -= 3)
+  {
+    const std::size_t triangles = atp::ExtractCut(model, atp::SelectLevel(model, level)).TriangleCount();
+    EXPECT_LT(triangles, previous) << "level " << level;
+    previous = triangles;
+  }
+  const atp::ModelNode& root = model.Node(0);
+  EXPECT_GT(root.SaturatedError, 0);
+}
+
+TEST_F(Construction, SameModelWhateverTheThreadCount)
+{
+  const std::string one = TempPath("one.atp"), three = TempPath("three.atp");
+  ASSERT_EQ(BuildModel(Mesh, one, 1), 1);
+  ASSERT_EQ(BuildModel(Mesh, three, 3), 1);
+  const std::string reference = ReadBytes(Path);
+  EXPECT_TRUE(ReadBytes(one) == reference);
+  EXPECT_TRUE(ReadBytes(three) == reference);
+  std::remove(one.c_str());
+  std::remove(three.c_str());
+}
+
+TEST_F(Construction, CorruptionIsDetectedNeverRendered)
+{
+  const std::string original = ReadBytes(Path);
+  const atp::ModelFile reference = atp::ModelFile::Open(Path);
+  std::vector<std::uint32_t> everything(reference.NodeCount()); // every patch of every level
+  std::iota(everything.begin(), everything.end(), 0u);
+  const std::string corrupt = TempPath("corrupt.atp");
+  std::mt19937 random(5);
+  int rejected = 0;
+  for (int trial = 0; trial < 60; ++trial)
+  {
+    std::string bytes = original;
+    if (trial % 3 == 0)
+    {
+      bytes.resize(std::uniform_int_distribution<std::size_t>(0, bytes.size() - 1)(random));
+    }
+    else
+    {
+      const std::size_t at = std::uniform_int_distribution<std::size_t>(0, bytes.size() - 1)(random);
+      bytes[at] = char(bytes[at] ^ (1 << (trial % 8)));
+    }
+    WriteBytes(corrupt, bytes);
+    try
+    {
+      const atp::ModelFile model = atp::ModelFile::Open(corrupt);
+      // A flip in alignment padding changes nothing that is read: the picture must be exact.
+      const atp::PatchMesh mesh = atp::ExtractCut(model, everything);
+      EXPECT_EQ(mesh.Positions, atp::ExtractCut(reference, everything).Positions);
+    }
+    catch (const std::exception& e)
+    {
+      ++rejected;
+      EXPECT_NE(std::string(e.what()), "");
+    }
+  }
+  EXPECT_GE(rejected, 55);
+  std::remove(corrupt.c_str());
+}
+
+TEST_F(Construction, CancelledBuildLeavesThePreviousModelUntouched)
+{
+  const std::string path = TempPath("cancelled.atp");
+  WriteBytes(path, "previous model");
+  vtkNew<vtkATPBuilder> builder;
+  builder->SetInputData(Mesh);
+  builder->SetFileName(path.c_str());
+  builder->SetLeafCapacity(400);
+  vtkNew<vtkCallbackCommand> quiet, cancel;
+  builder->AddObserver(vtkCommand::ErrorEvent, quiet);
+  cancel->SetCallback([](vtkObject* caller, unsigned long, void*, void* call) {
+    if (*static_cast<double*>(call) > 0.5)
+    {
+      static_cast<vtkATPBuilder*>(caller)->SetAbortExecute(1);
+    }
+  });
+  builder->AddObserver(vtkCommand::ProgressEvent, cancel);
+  EXPECT_EQ(builder->Build(), 0);
+  EXPECT_NE(std::string(builder->GetErrorMessage()).find("cancelled"), std::string::npos);
+  EXPECT_EQ(ReadBytes(path), "previous model");
+  std::remove(path.c_str());
+}

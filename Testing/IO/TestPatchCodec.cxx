@@ -1,0 +1,495 @@
+// Patch codec and quantization grid: round trips keep the triangle set, positions on the one
+// global grid (bit-identical across patches), normals and colors; hostile bytes only ever give
+// PatchFormatError or a valid patch.
+#include "atpPatchCodec.h"
+#include "atpQuantizationGrid.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace
+{
+using Corner = std::array<std::uint32_t, 3>; // float bits of a position
+using Triangle = std::array<Corner, 3>;
+
+Corner Bits(const float* p)
+{
+  Corner c;
+  std::memcpy(c.data(), p, sizeof(c));
+  return c;
+}
+
+/// Each triangle as its corners' float bits, rotated to start at the smallest (keeps winding).
+std::vector<Triangle> TriangleSet(const std::vector<float>& positions,
+  const std::vector<std::uint32_t>& indices)
+{
+  std::vector<Triangle> set;
+  for (std::size_t t = 0; t + 2 < indices.size(); t += 3)
+  {
+    Triangle tri;
+    for (int c = 0; c < 3; ++c)
+    {
+      tri[c] = Bits(&positions[3 * indices[t + c]]);
+    }
+    std::rotate(tri.begin(), std::min_element(tri.begin(), tri.end()), tri.end());
+    set.push_back(tri);
+  }
+  std::sort(set.begin(), set.end());
+  return set;
+}
+
+/// A bumpy height field over [x0, x0 + size]^2 with unit normals, n x n quads, optional colors,
+/// and its vertices shuffled so the encoder has reordering to do.
+atp::PatchMesh Terrain(float x0, float y0, float size, int n, bool colors, unsigned seed)
+{
+  atp::PatchMesh mesh;
+  const int side = n + 1;
+  std::vector<std::uint32_t> order(side * side);
+  for (std::size_t i = 0; i < order.size(); ++i)
+  {
+    order[i] = static_cast<std::uint32_t>(i);
+  }
+  std::mt19937 random(seed);
+  std::shuffle(order.begin(), order.end(), random);
+  mesh.Positions.resize(3 * order.size());
+  mesh.Normals.resize(3 * order.size());
+  for (int j = 0; j < side; ++j)
+  {
+    for (int i = 0; i < side; ++i)
+    {
+      const std::uint32_t v = order[j * side + i];
+      const float x = x0 + size * i / n;
+      const float y = y0 + size * j / n;
+      // Heights depend on x and y only: terrains that overlap share their vertices exactly.
+      mesh.Positions[3 * v] = x;
+      mesh.Positions[3 * v + 1] = y;
+      mesh.Positions[3 * v + 2] = 0.1f * std::sin(3 * x) * std::cos(2 * y);
+      const float dx = 0.3f * std::cos(3 * x) * std::cos(2 * y);
+      const float dy = -0.2f * std::sin(3 * x) * std::sin(2 * y);
+      const float length = std::sqrt(dx * dx + dy * dy + 1);
+      mesh.Normals[3 * v] = -dx / length;
+      mesh.Normals[3 * v + 1] = -dy / length;
+      mesh.Normals[3 * v + 2] = 1 / length;
+    }
+  }
+  if (colors)
+  {
+    mesh.Colors.resize(4 * order.size());
+    for (std::size_t k = 0; k < mesh.Colors.size(); ++k)
+    {
+      mesh.Colors[k] = static_cast<std::uint8_t>(random());
+    }
+  }
+  for (int j = 0; j < n; ++j)
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      const std::uint32_t a = order[j * side + i], b = order[j * side + i + 1];
+      const std::uint32_t c = order[(j + 1) * side + i], d = order[(j + 1) * side + i + 1];
+      mesh.Indices.insert(mesh.Indices.end(), { a, b, d, a, d, c });
+    }
+  }
+  return mesh;
+}
+
+atp::QuantizationGrid GridFor(float lo, float hi, int extraBitsDropped = 0)
+{
+  const double min[3] = { lo, lo, lo };
+  const double max[3] = { hi, hi, hi };
+  return atp::QuantizationGrid::ForBounds(min, max, extraBitsDropped);
+}
+
+atp::PatchMesh RoundTrip(const atp::PatchMesh& mesh, const atp::QuantizationGrid& grid)
+{
+  const std::vector<std::uint8_t> bytes = atp::EncodePatch(mesh, grid);
+  atp::PatchMesh decoded;
+  atp::DecodePatch(bytes.data(), bytes.size(), grid, decoded);
+  return decoded;
+}
+
+/// What the codec promises for any decoded patch, hostile input or not.
+void ExpectValid(const atp::PatchMesh& mesh)
+{
+  const std::size_t vertices = mesh.VertexCount();
+  ASSERT_EQ(mesh.Positions.size(), 3 * vertices);
+  ASSERT_EQ(mesh.Normals.size(), 3 * vertices);
+  ASSERT_TRUE(mesh.Colors.empty() || mesh.Colors.size() == 4 * vertices);
+  ASSERT_EQ(mesh.Indices.size() % 3, 0u);
+  ASSERT_TRUE(mesh.BoundaryEdges.empty());
+  for (const std::uint32_t i : mesh.Indices)
+  {
+    ASSERT_LT(i, vertices);
+  }
+  for (std::size_t v = 0; v < vertices; ++v)
+  {
+    const float* n = &mesh.Normals[3 * v];
+    ASSERT_NEAR(n[0] * n[0] + n[1] * n[1] + n[2] * n[2], 1.0f, 1e-5f);
+  }
+}
+
+double AngleDegrees(const float* a, const float* b)
+{
+  const double cross[3] = { double(a[1]) * b[2] - double(a[2]) * b[1],
+    double(a[2]) * b[0] - double(a[0]) * b[2], double(a[0]) * b[1] - double(a[1]) * b[0] };
+  const double dot = double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2];
+  return std::atan2(std::sqrt(cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]),
+           dot) * 180 / std::acos(-1.0);
+}
+
+TEST(QuantizationGrid, StepIsTheUlpOfTheLargestCoordinate)
+{
+  const double min[3] = { -3.0, 0.5, 1.0 };
+  const double max[3] = { 1.0, 6.0, 2.0 }; // largest |coordinate| 6, binade [4, 8)
+  const atp::QuantizationGrid grid = atp::QuantizationGrid::ForBounds(min, max);
+  EXPECT_EQ(grid.Step, std::ldexp(1.0, 2 - 23));
+  EXPECT_EQ(grid.MaxError(), grid.Step / 2);
+  EXPECT_EQ(atp::QuantizationGrid::ForBounds(min, max, 3).Step, 8 * grid.Step);
+  for (int a = 0; a < 3; ++a)
+  {
+    EXPECT_LE(grid.Origin[a], min[a]);
+    EXPECT_EQ(std::fmod(grid.Origin[a], grid.Step), 0.0);
+    const float corner[3] = { float(max[0]), float(max[1]), float(max[2]) };
+    EXPECT_LT(grid.Quantize(corner)[a], atp::QuantizationGrid::MaxInteger);
+  }
+}
+
+TEST(QuantizationGrid, DegenerateBoxes)
+{
+  const double origin[3] = { 0, 0, 0 };
+  const atp::QuantizationGrid point = atp::QuantizationGrid::ForBounds(origin, origin);
+  EXPECT_GT(point.Step, 0.0);
+  const float zero[3] = { 0, 0, 0 };
+  float back[3];
+  point.Dequantize(point.Quantize(zero).data(), back);
+  EXPECT_EQ(Bits(back), Bits(zero));
+
+  const double flatMin[3] = { -2, 5, 1 };
+  const double flatMax[3] = { 3, 5, 4 }; // flat in y
+  const atp::QuantizationGrid flat = atp::QuantizationGrid::ForBounds(flatMin, flatMax);
+  const float p[3] = { 0.25f, 5, 3.5f };
+  flat.Dequantize(flat.Quantize(p).data(), back);
+  EXPECT_EQ(Bits(back), Bits(p));
+
+  const double nan[3] = { 0, std::nan(""), 0 };
+  EXPECT_THROW(atp::QuantizationGrid::ForBounds(origin, nan), std::invalid_argument);
+  EXPECT_THROW(atp::QuantizationGrid::ForBounds(flatMax, flatMin), std::invalid_argument);
+}
+
+TEST(QuantizationGrid, ClampsOutsideTheBox)
+{
+  const atp::QuantizationGrid grid = GridFor(-1, 1);
+  const float far[3] = { -1e30f, 1e30f, std::nanf("") };
+  const std::array<std::uint32_t, 3> q = grid.Quantize(far);
+  EXPECT_EQ(q[0], 0u);
+  EXPECT_EQ(q[1], atp::QuantizationGrid::MaxInteger);
+  EXPECT_EQ(q[2], 0u);
+}
+
+TEST(PatchCodec, RoundTripKeepsTrianglesPositionsNormalsColors)
+{
+  const atp::PatchMesh mesh = Terrain(-1.5f, 0.25f, 1.0f, 40, true, 1);
+  const atp::QuantizationGrid grid = GridFor(-2, 2);
+  const atp::PatchMesh decoded = RoundTrip(mesh, grid);
+  ExpectValid(decoded);
+  ASSERT_EQ(decoded.VertexCount(), mesh.VertexCount());
+  ASSERT_EQ(decoded.TriangleCount(), mesh.TriangleCount());
+
+  // The expected decoded position of each input vertex is its grid point.
+  std::vector<float> snapped(mesh.Positions.size());
+  for (std::size_t v = 0; v < mesh.VertexCount(); ++v)
+  {
+    grid.Dequantize(grid.Quantize(&mesh.Positions[3 * v]).data(), &snapped[3 * v]);
+    for (int a = 0; a < 3; ++a)
+    {
+      EXPECT_LE(std::fabs(snapped[3 * v + a] - mesh.Positions[3 * v + a]), grid.MaxError());
+    }
+  }
+  EXPECT_EQ(TriangleSet(decoded.Positions, decoded.Indices),
+    TriangleSet(snapped, mesh.Indices));
+
+  // Match vertices by snapped position (all distinct here) to compare normals and colors.
+  std::vector<std::pair<Corner, std::size_t>> byPosition;
+  for (std::size_t v = 0; v < mesh.VertexCount(); ++v)
+  {
+    byPosition.emplace_back(Bits(&snapped[3 * v]), v);
+  }
+  std::sort(byPosition.begin(), byPosition.end());
+  double worstDegrees = 0;
+  for (std::size_t v = 0; v < decoded.VertexCount(); ++v)
+  {
+    const auto found = std::lower_bound(byPosition.begin(), byPosition.end(),
+      std::make_pair(Bits(&decoded.Positions[3 * v]), std::size_t(0)));
+    ASSERT_NE(found, byPosition.end());
+    ASSERT_EQ(found->first, Bits(&decoded.Positions[3 * v]));
+    const std::size_t original = found->second;
+    worstDegrees = std::max(
+      worstDegrees, AngleDegrees(&decoded.Normals[3 * v], &mesh.Normals[3 * original]));
+    for (int k = 0; k < 4; ++k)
+    {
+      EXPECT_EQ(decoded.Colors[4 * v + k], mesh.Colors[4 * original + k]);
+    }
+  }
+  EXPECT_LT(worstDegrees, 0.005);
+}
+
+TEST(PatchCodec, NormalsWithinStatedAngularError)
+{
+  // One triangle per normal would be wasteful: a fan over many vertices at one point.
+  atp::PatchMesh mesh;
+  std::mt19937 random(7);
+  std::normal_distribution<float> gaussian;
+  const int count = 20000;
+  for (int v = 0; v < count; ++v)
+  {
+    float n[3] = { gaussian(random), gaussian(random), gaussian(random) };
+    if (v < 6) // the axes, where octahedral folding has its corners
+    {
+      n[0] = n[1] = n[2] = 0;
+      n[v / 2] = v % 2 ? -1.0f : 1.0f;
+    }
+    const float length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int a = 0; a < 3; ++a)
+    {
+      mesh.Normals.push_back(n[a] / length);
+      mesh.Positions.push_back(float(v));
+    }
+  }
+  for (std::uint32_t v = 0; v + 2 < count; v += 3)
+  {
+    mesh.Indices.insert(mesh.Indices.end(), { v, v + 1, v + 2 });
+  }
+  const atp::QuantizationGrid grid = GridFor(0, count);
+  const atp::PatchMesh decoded = RoundTrip(mesh, grid);
+  ExpectValid(decoded);
+  double worstDegrees = 0;
+  for (std::size_t v = 0; v < decoded.VertexCount(); ++v)
+  {
+    // Positions are v, v, v: exact on this grid, so they name the original vertex.
+    const std::size_t original = static_cast<std::size_t>(decoded.Positions[3 * v]);
+    worstDegrees = std::max(
+      worstDegrees, AngleDegrees(&decoded.Normals[3 * v], &mesh.Normals[3 * original]));
+  }
+  EXPECT_LT(worstDegrees, 0.005);
+  std::printf("octahedral 2 x int16 normals: max angular error %.5f degrees\n", worstDegrees);
+}
+
+TEST(PatchCodec, SharedVertexIsBitIdenticalAcrossPatches)
+{
+  // Two patches of different extents and vertex orders meeting at x = 0.5, y in [0, 1].
+  const atp::QuantizationGrid grid = GridFor(-4, 4);
+  const atp::PatchMesh small = RoundTrip(Terrain(0.0f, 0.0f, 0.5f, 8, false, 2), grid);
+  const atp::PatchMesh large = RoundTrip(Terrain(0.5f, 0.0f, 2.0f, 32, false, 3), grid);
+  ExpectValid(small);
+  ExpectValid(large);
+  std::vector<Corner> seam;
+  for (std::size_t v = 0; v < small.VertexCount(); ++v)
+  {
+    if (small.Positions[3 * v] == 0.5f)
+    {
+      seam.push_back(Bits(&small.Positions[3 * v]));
+    }
+  }
+  std::vector<Corner> largeCorners;
+  for (std::size_t v = 0; v < large.VertexCount(); ++v)
+  {
+    largeCorners.push_back(Bits(&large.Positions[3 * v]));
+  }
+  std::sort(largeCorners.begin(), largeCorners.end());
+  int shared = 0;
+  for (const Corner& c : seam)
+  {
+    shared += std::binary_search(largeCorners.begin(), largeCorners.end(), c);
+  }
+  // Both tessellations have y = j / 16 on the seam: the small patch's 9 seam vertices.
+  EXPECT_EQ(seam.size(), 9u);
+  EXPECT_EQ(shared, 9);
+}
+
+TEST(PatchCodec, TopBinadeCoordinatesAreBitExact)
+{
+  // Box up to 6: every float with magnitude in [4, 8) lies on the grid.
+  const atp::QuantizationGrid grid = GridFor(-7.5f, 6.0f);
+  atp::PatchMesh mesh;
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> magnitude(4.0f, 7.5f);
+  for (std::uint32_t v = 0; v < 3000; ++v)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      const float m = magnitude(random);
+      mesh.Positions.push_back(random() % 2 && m <= 6.0f ? m : -m);
+      mesh.Normals.push_back(a == 2 ? 1.0f : 0.0f);
+    }
+  }
+  for (std::uint32_t v = 0; v + 2 < 3000; v += 3)
+  {
+    mesh.Indices.insert(mesh.Indices.end(), { v, v + 1, v + 2 });
+  }
+  const atp::PatchMesh decoded = RoundTrip(mesh, grid);
+  ExpectValid(decoded);
+  EXPECT_EQ(TriangleSet(decoded.Positions, decoded.Indices),
+    TriangleSet(mesh.Positions, mesh.Indices));
+}
+
+TEST(PatchCodec, EmptyPatch)
+{
+  const atp::QuantizationGrid grid = GridFor(0, 1);
+  atp::PatchMesh empty;
+  const std::vector<std::uint8_t> bytes = atp::EncodePatch(empty, grid);
+  EXPECT_EQ(bytes.size(), atp::PatchHeaderBytes);
+  atp::PatchMesh decoded = Terrain(0, 0, 1, 2, true, 4); // stale contents must go
+  atp::DecodePatch(bytes.data(), bytes.size(), grid, decoded);
+  EXPECT_EQ(decoded.VertexCount(), 0u);
+  EXPECT_EQ(decoded.TriangleCount(), 0u);
+  EXPECT_FALSE(decoded.HasColors());
+  ExpectValid(decoded);
+}
+
+TEST(PatchCodec, DecodeReusesCapacity)
+{
+  const atp::QuantizationGrid grid = GridFor(-2, 2);
+  const std::vector<std::uint8_t> big = atp::EncodePatch(Terrain(0, 0, 1, 30, false, 5), grid);
+  const std::vector<std::uint8_t> small = atp::EncodePatch(Terrain(0, 0, 1, 10, false, 6), grid);
+  atp::PatchMesh out;
+  atp::DecodePatch(big.data(), big.size(), grid, out);
+  const float* positions = out.Positions.data();
+  const std::uint32_t* indices = out.Indices.data();
+  atp::DecodePatch(small.data(), small.size(), grid, out);
+  EXPECT_EQ(out.Positions.data(), positions);
+  EXPECT_EQ(out.Indices.data(), indices);
+  ExpectValid(out);
+}
+
+TEST(PatchCodec, InconsistentMeshIsRejected)
+{
+  const atp::QuantizationGrid grid = GridFor(0, 1);
+  atp::PatchMesh mesh = Terrain(0, 0, 1, 2, false, 8);
+  mesh.Indices.back() = 1000;
+  EXPECT_THROW(atp::EncodePatch(mesh, grid), std::invalid_argument);
+  mesh = Terrain(0, 0, 1, 2, false, 8);
+  mesh.Normals.pop_back();
+  EXPECT_THROW(atp::EncodePatch(mesh, grid), std::invalid_argument);
+}
+
+void PutU32(std::vector<std::uint8_t>& bytes, std::size_t at, std::uint32_t v)
+{
+  for (int i = 0; i < 4; ++i)
+  {
+    bytes[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
+  }
+}
+
+TEST(PatchCodec, AbsurdCountsAreRejectedBeforeAllocating)
+{
+  const atp::QuantizationGrid grid = GridFor(-2, 2);
+  const std::vector<std::uint8_t> valid = atp::EncodePatch(Terrain(0, 0, 1, 20, false, 9), grid);
+  atp::PatchMesh out;
+  for (const std::uint32_t vertices : { 1u << 31, atp::MaxPatchVertices, 1u << 20 })
+  {
+    std::vector<std::uint8_t> bytes = valid;
+    PutU32(bytes, 2, vertices); // vertex count
+    EXPECT_THROW(atp::DecodePatch(bytes.data(), bytes.size(), grid, out), atp::PatchFormatError);
+    EXPECT_EQ(out.Positions.capacity(), 0u);
+  }
+  for (const std::uint32_t triangles : { 1u << 31, atp::MaxPatchTriangles, 1u << 20 })
+  {
+    std::vector<std::uint8_t> bytes = valid;
+    PutU32(bytes, 6, triangles); // triangle count
+    EXPECT_THROW(atp::DecodePatch(bytes.data(), bytes.size(), grid, out), atp::PatchFormatError);
+    EXPECT_EQ(out.Indices.capacity(), 0u);
+  }
+  try
+  {
+    std::vector<std::uint8_t> bytes = valid;
+    PutU32(bytes, 2, 1u << 31);
+    atp::DecodePatch(bytes.data(), bytes.size(), grid, out);
+  }
+  catch (const atp::PatchFormatError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("2147483648 vertices"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PatchCodec, HostileBytesThrowOrDecodeValid)
+{
+  const atp::QuantizationGrid grid = GridFor(-2, 2);
+  const std::vector<std::uint8_t> valid = atp::EncodePatch(Terrain(-1, -1, 2, 24, true, 10), grid);
+  std::mt19937 random(12345);
+  atp::PatchMesh out;
+  int rejected = 0;
+  int decoded = 0;
+  auto attempt = [&](const std::vector<std::uint8_t>& bytes)
+  {
+    try
+    {
+      atp::DecodePatch(bytes.data(), bytes.size(), grid, out);
+      ++decoded;
+      ExpectValid(out);
+    }
+    catch (const atp::PatchFormatError&)
+    {
+      ++rejected;
+    }
+  };
+  for (int iteration = 0; iteration < 20000; ++iteration)
+  {
+    std::vector<std::uint8_t> bytes = valid;
+    switch (iteration % 5)
+    {
+      case 0: // a few random bit flips anywhere
+        for (int k = 1 + random() % 4; k > 0; --k)
+        {
+          bytes[random() % bytes.size()] ^= std::uint8_t(1u << (random() % 8));
+        }
+        break;
+      case 1: // random bytes in the streams, header intact: exercises meshopt's decoders
+        for (int k = 1 + random() % 16; k > 0; --k)
+        {
+          bytes[atp::PatchHeaderBytes + random() % (bytes.size() - atp::PatchHeaderBytes)] =
+            std::uint8_t(random());
+        }
+        break;
+      case 2: // truncated, or extended with garbage
+        bytes.resize(random() % (bytes.size() + 64), std::uint8_t(random()));
+        break;
+      case 3: // one header field replaced
+        PutU32(bytes, 2 + 4 * (random() % 9), std::uint32_t(random()) >> (random() % 32));
+        break;
+      default: // garbage behind a plausible header
+        for (std::size_t k = atp::PatchHeaderBytes; k < bytes.size(); ++k)
+        {
+          bytes[k] = std::uint8_t(random());
+        }
+        break;
+    }
+    attempt(bytes);
+    if (HasFatalFailure())
+    {
+      return;
+    }
+  }
+  for (int iteration = 0; iteration < 2000; ++iteration) // pure garbage, including tiny sizes
+  {
+    std::vector<std::uint8_t> bytes(random() % 200);
+    for (std::uint8_t& b : bytes)
+    {
+      b = std::uint8_t(random());
+    }
+    attempt(bytes);
+  }
+  attempt({});
+  EXPECT_GT(rejected, 0);
+  EXPECT_GT(decoded, 0); // stream bytes changed without breaking the codec: garbage, but valid
+  std::printf("hostile inputs: %d rejected, %d decoded to valid patches\n", rejected, decoded);
+}
+
+} // namespace

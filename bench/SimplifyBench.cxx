@@ -1,0 +1,483 @@
+// Our constrained simplifier against meshopt_simplify (meshoptimizer 0.18, LockBorder) on
+// diamond-like chunks of a real mesh: speed (triangles removed per second) and the symmetric,
+// sampled Hausdorff distance between input and output, relative to the chunk's box diagonal.
+//   atp-bench-simplify [MESH] [CHUNK_TRIANGLES] [CHUNKS]
+// MESH defaults to Data/bumpy-torus.ply. A chunk is the set of triangles whose centroid lies in
+// a box around a mesh vertex: its cut border is the "diamond-external" boundary (locked by both
+// simplifiers), the input's own holes inside it are the original boundary.
+#include "atpMergePatches.h"
+#include "atpSimplifier.h"
+#include "atpNormalEncoding.h"
+#include "atpTriangleSource.h"
+
+#include <meshoptimizer.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace atp;
+
+namespace
+{
+
+PatchMesh Load(const std::string& path)
+{
+  std::unique_ptr<TriangleSource> source = OpenTriangleSource(path, "/tmp");
+  PatchMesh soup;
+  std::vector<SoupTriangle> buffer(4096);
+  while (const std::size_t n = source->Read(buffer.data(), buffer.size()))
+  {
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const SoupTriangle& t = buffer[i];
+      for (int k = 0; k < 3; ++k)
+      {
+        float normal[3];
+        DecodeNormal(t.Normals[k], normal);
+        soup.Indices.push_back(std::uint32_t(soup.VertexCount()));
+        soup.Positions.insert(soup.Positions.end(), t.V[k], t.V[k] + 3);
+        soup.Normals.insert(soup.Normals.end(), normal, normal + 3);
+      }
+      soup.BoundaryEdges.push_back(t.BoundaryEdges);
+    }
+  }
+  return MergePatches({ &soup });
+}
+
+/// The triangles whose centroid is within `half` of `center` on every axis, compacted.
+PatchMesh Cut(const PatchMesh& mesh, const float* center, double half)
+{
+  PatchMesh chunk;
+  std::vector<std::uint32_t> local(mesh.VertexCount(), ~0u);
+  for (std::size_t t = 0; t < mesh.TriangleCount(); ++t)
+  {
+    bool inside = true;
+    for (int a = 0; a < 3; ++a)
+    {
+      double c = 0;
+      for (int k = 0; k < 3; ++k)
+      {
+        c += mesh.Positions[3 * std::size_t(mesh.Indices[3 * t + std::size_t(k)]) + std::size_t(a)] / 3.0;
+      }
+      inside = inside && std::abs(c - center[a]) <= half;
+    }
+    if (!inside)
+    {
+      continue;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t v = mesh.Indices[3 * t + std::size_t(k)];
+      if (local[v] == ~0u)
+      {
+        local[v] = std::uint32_t(chunk.VertexCount());
+        chunk.Positions.insert(chunk.Positions.end(), &mesh.Positions[3 * v], &mesh.Positions[3 * v] + 3);
+        chunk.Normals.insert(chunk.Normals.end(), &mesh.Normals[3 * v], &mesh.Normals[3 * v] + 3);
+      }
+      chunk.Indices.push_back(local[v]);
+    }
+    chunk.BoundaryEdges.push_back(mesh.BoundaryEdges[t]);
+  }
+  return chunk;
+}
+
+/// Open edges of the chunk: (hole edges with the bit set, cut edges without).
+std::pair<std::size_t, std::size_t> CountOpenEdges(const PatchMesh& mesh)
+{
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  for (std::size_t t = 0; t < mesh.TriangleCount(); ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      std::uint32_t a = mesh.Indices[3 * t + std::size_t(k)], b = mesh.Indices[3 * t + std::size_t((k + 1) % 3)];
+      ++uses[{ std::min(a, b), std::max(a, b) }];
+    }
+  }
+  std::size_t holes = 0, cut = 0;
+  for (std::size_t t = 0; t < mesh.TriangleCount(); ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      std::uint32_t a = mesh.Indices[3 * t + std::size_t(k)], b = mesh.Indices[3 * t + std::size_t((k + 1) % 3)];
+      if (uses[{ std::min(a, b), std::max(a, b) }] == 1)
+      {
+        ((mesh.BoundaryEdges[t] >> k) & 1 ? holes : cut)++;
+      }
+    }
+  }
+  return { holes, cut };
+}
+
+struct Vec
+{
+  double x, y, z;
+};
+Vec operator-(Vec a, Vec b)
+{
+  return { a.x - b.x, a.y - b.y, a.z - b.z };
+}
+Vec operator+(Vec a, Vec b)
+{
+  return { a.x + b.x, a.y + b.y, a.z + b.z };
+}
+Vec operator*(double s, Vec a)
+{
+  return { s * a.x, s * a.y, s * a.z };
+}
+double Dot(Vec a, Vec b)
+{
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+/// Closest point on triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5).
+Vec ClosestOnTriangle(Vec p, Vec a, Vec b, Vec c)
+{
+  const Vec ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = Dot(ab, ap), d2 = Dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0)
+    return a;
+  const Vec bp = p - b;
+  const double d3 = Dot(ab, bp), d4 = Dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3)
+    return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0)
+    return a + (d1 / (d1 - d3)) * ab;
+  const Vec cp = p - c;
+  const double d5 = Dot(ab, cp), d6 = Dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6)
+    return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0)
+    return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  const double denom = 1 / (va + vb + vc);
+  return a + (vb * denom) * ab + (vc * denom) * ac;
+}
+
+/// Triangles binned in a uniform grid, for nearest-surface queries.
+class SurfaceGrid
+{
+public:
+  SurfaceGrid(const std::vector<float>& positions, const std::vector<std::uint32_t>& indices)
+    : Positions(positions)
+    , Indices(indices)
+    , Stamp(indices.size() / 3, 0)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      Lo[a] = 1e300;
+      double hi = -1e300;
+      for (std::uint32_t v : indices)
+      {
+        Lo[a] = std::min(Lo[a], double(positions[3 * v + std::uint32_t(a)]));
+        hi = std::max(hi, double(positions[3 * v + std::uint32_t(a)]));
+      }
+      Extent[a] = hi - Lo[a];
+    }
+    const double cells = std::max<double>(1, double(indices.size() / 3) / 2);
+    const double volume = std::max(1e-30, std::max(Extent[0], 1e-9) * std::max(Extent[1], 1e-9) * std::max(Extent[2], 1e-9));
+    Cell = std::cbrt(volume / cells);
+    for (int a = 0; a < 3; ++a)
+    {
+      Dim[a] = std::max(1, std::min(256, int(Extent[a] / Cell) + 1));
+    }
+    Start.assign(std::size_t(Dim[0] * Dim[1] * Dim[2]) + 1, 0);
+    // Two passes: count, then fill (CSR).
+    for (int pass = 0; pass < 2; ++pass)
+    {
+      if (pass == 1)
+      {
+        for (std::size_t i = 1; i < Start.size(); ++i)
+        {
+          Start[i] += Start[i - 1];
+        }
+        Items.resize(Start.back());
+      }
+      for (std::size_t t = 0; t < indices.size() / 3; ++t)
+      {
+        int lo[3], hi[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          double mn = 1e300, mx = -1e300;
+          for (int k = 0; k < 3; ++k)
+          {
+            const double x = positions[3 * indices[3 * t + std::size_t(k)] + std::uint32_t(a)];
+            mn = std::min(mn, x);
+            mx = std::max(mx, x);
+          }
+          lo[a] = CellOf(a, mn);
+          hi[a] = CellOf(a, mx);
+        }
+        for (int z = lo[2]; z <= hi[2]; ++z)
+          for (int y = lo[1]; y <= hi[1]; ++y)
+            for (int x = lo[0]; x <= hi[0]; ++x)
+            {
+              const std::size_t cell = std::size_t((z * Dim[1] + y) * Dim[0] + x);
+              if (pass == 0)
+                ++Start[cell + 1];
+              else
+                Items[Start[cell] + Fill[cell]++] = std::uint32_t(t);
+            }
+      }
+      Fill.assign(Start.size(), 0);
+    }
+  }
+
+  double Distance(Vec p)
+  {
+    ++Query;
+    const int c[3] = { CellOf(0, p.x), CellOf(1, p.y), CellOf(2, p.z) };
+    double best = 1e300;
+    const int maxRing = std::max(Dim[0], std::max(Dim[1], Dim[2]));
+    for (int r = 0; r <= maxRing; ++r)
+    {
+      for (int z = c[2] - r; z <= c[2] + r; ++z)
+        for (int y = c[1] - r; y <= c[1] + r; ++y)
+          for (int x = c[0] - r; x <= c[0] + r; ++x)
+          {
+            if (std::max(std::abs(x - c[0]), std::max(std::abs(y - c[1]), std::abs(z - c[2]))) != r ||
+              x < 0 || y < 0 || z < 0 || x >= Dim[0] || y >= Dim[1] || z >= Dim[2])
+              continue;
+            const std::size_t cell = std::size_t((z * Dim[1] + y) * Dim[0] + x);
+            for (std::size_t i = Start[cell]; i < Start[cell + 1]; ++i)
+            {
+              const std::uint32_t t = Items[i];
+              if (Stamp[t] == Query)
+                continue;
+              Stamp[t] = Query;
+              const Vec q = ClosestOnTriangle(p, Corner(t, 0), Corner(t, 1), Corner(t, 2));
+              best = std::min(best, Dot(q - p, q - p));
+            }
+          }
+      if (best <= (r * Cell) * (r * Cell))
+        break;
+    }
+    return std::sqrt(best);
+  }
+
+private:
+  int CellOf(int a, double x) const
+  {
+    return std::max(0, std::min(Dim[a] - 1, int((x - Lo[a]) / Cell)));
+  }
+  Vec Corner(std::uint32_t t, int k) const
+  {
+    const float* p = &Positions[3 * std::size_t(Indices[3 * t + std::uint32_t(k)])];
+    return { p[0], p[1], p[2] };
+  }
+
+  const std::vector<float>& Positions;
+  const std::vector<std::uint32_t>& Indices;
+  double Lo[3], Extent[3], Cell = 1;
+  int Dim[3];
+  std::vector<std::size_t> Start, Fill;
+  std::vector<std::uint32_t> Items;
+  std::vector<std::uint32_t> Stamp;
+  std::uint32_t Query = 0;
+};
+
+/// Largest distance from points sampled on `from` (its vertices and `perTriangle` random points
+/// per triangle on average, by area) to the surface `to`.
+double OneSidedHausdorff(const std::vector<float>& positions, const std::vector<std::uint32_t>& from,
+  const std::vector<std::uint32_t>& to, int perTriangle)
+{
+  SurfaceGrid grid(positions, to);
+  std::mt19937 random(12345);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const auto corner = [&](std::size_t t, int k) {
+    const float* p = &positions[3 * std::size_t(from[3 * t + std::size_t(k)])];
+    return Vec{ p[0], p[1], p[2] };
+  };
+  double area = 0;
+  for (std::size_t t = 0; t < from.size() / 3; ++t)
+  {
+    const Vec a = corner(t, 0), b = corner(t, 1) - a, c = corner(t, 2) - a;
+    const Vec n{ b.y * c.z - b.z * c.y, b.z * c.x - b.x * c.z, b.x * c.y - b.y * c.x };
+    area += std::sqrt(Dot(n, n));
+  }
+  const double density = perTriangle * double(from.size() / 3) / area;
+  double worst = 0;
+  for (std::size_t t = 0; t < from.size() / 3; ++t)
+  {
+    const Vec a = corner(t, 0), b = corner(t, 1), c = corner(t, 2);
+    worst = std::max(worst, grid.Distance(a));
+    const Vec u = b - a, v = c - a;
+    const Vec n{ u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x };
+    const double expected = density * std::sqrt(Dot(n, n));
+    int samples = int(expected);
+    samples += unit(random) < expected - samples ? 1 : 0;
+    for (int s = 0; s < samples; ++s)
+    {
+      double r1 = unit(random), r2 = unit(random);
+      if (r1 + r2 > 1)
+      {
+        r1 = 1 - r1;
+        r2 = 1 - r2;
+      }
+      worst = std::max(worst, grid.Distance(a + r1 * u + r2 * v));
+    }
+  }
+  return worst;
+}
+
+double Hausdorff(const std::vector<float>& positions, const std::vector<std::uint32_t>& input,
+  const std::vector<std::uint32_t>& output)
+{
+  return std::max(OneSidedHausdorff(positions, input, output, 8), OneSidedHausdorff(positions, output, input, 16));
+}
+
+double Diagonal(const PatchMesh& mesh)
+{
+  double lo[3] = { 1e300, 1e300, 1e300 }, hi[3] = { -1e300, -1e300, -1e300 };
+  for (std::size_t i = 0; i < mesh.Positions.size(); ++i)
+  {
+    lo[i % 3] = std::min(lo[i % 3], double(mesh.Positions[i]));
+    hi[i % 3] = std::max(hi[i % 3], double(mesh.Positions[i]));
+  }
+  return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+/// Best of several timed runs, in seconds (at least 5 runs and 0.2 s in all).
+template <typename Run>
+double Time(Run run)
+{
+  double best = 1e300, total = 0;
+  for (int i = 0; i < 5 || total < 0.2; ++i)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    run();
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    best = std::min(best, s);
+    total += s;
+  }
+  return best;
+}
+
+/// The output of our simplifier as indices into the chunk's vertices (each output vertex is
+/// an input vertex, found by its position).
+std::vector<std::uint32_t> ToChunkIndices(const PatchMesh& chunk, const SimplifyResult& result)
+{
+  std::map<std::array<float, 3>, std::uint32_t> index;
+  for (std::uint32_t v = 0; v < chunk.VertexCount(); ++v)
+  {
+    index[{ chunk.Positions[3 * v], chunk.Positions[3 * v + 1], chunk.Positions[3 * v + 2] }] = v;
+  }
+  std::vector<std::uint32_t> out;
+  for (const PatchMesh& region : result.Regions)
+  {
+    for (std::uint32_t v : region.Indices)
+    {
+      out.push_back(index.at({ region.Positions[3 * v], region.Positions[3 * v + 1], region.Positions[3 * v + 2] }));
+    }
+  }
+  return out;
+}
+
+struct Row
+{
+  std::size_t Out = 0;
+  double Seconds = 0, Hausdorff = 0;
+};
+
+void Print(const char* name, std::size_t in, const Row& row)
+{
+  std::printf("  %-26s %7zu %9.2f %12.2f %14.3e\n", name, row.Out, row.Seconds * 1e3,
+    double(in - row.Out) / row.Seconds / 1e6, row.Hausdorff);
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  const std::string path = argc > 1 ? argv[1] : ATP_DATA_DIR "/bumpy-torus.ply";
+  const std::size_t target = argc > 2 ? std::stoul(argv[2]) : 12000;
+  const int chunks = argc > 3 ? std::stoi(argv[3]) : 6;
+  const PatchMesh mesh = Load(path);
+  std::printf("mesh %s: %zu vertices, %zu triangles; %d chunks of ~%zu triangles, each halved\n",
+    path.c_str(), mesh.VertexCount(), mesh.TriangleCount(), chunks, target);
+  std::printf("meshopt_simplify (meshoptimizer %d.%d) runs with meshopt_SimplifyLockBorder and target_error 1:\n"
+              "LockBorder also locks the input's own holes, which our simplifier may simplify along.\n"
+              "Hausdorff: symmetric, sampled, relative to the chunk's box diagonal.\n\n",
+    MESHOPTIMIZER_VERSION / 1000, MESHOPTIMIZER_VERSION % 1000 / 10);
+
+  Row sum[3];
+  std::size_t sumIn = 0;
+  const char* names[3] = { "ours (normals weighted)", "ours (positions only)", "meshopt LockBorder" };
+  for (int c = 0; c < chunks; ++c)
+  {
+    const std::uint32_t seed = std::uint32_t((2 * c + 1) * mesh.VertexCount() / std::size_t(2 * chunks));
+    const float* center = &mesh.Positions[3 * std::size_t(seed)];
+    // Box size by bisection, for about `target` triangles.
+    double lo = 0, hi = Diagonal(mesh);
+    PatchMesh chunk;
+    for (int i = 0; i < 40; ++i)
+    {
+      const double half = 0.5 * (lo + hi);
+      chunk = Cut(mesh, center, half);
+      if (chunk.TriangleCount() * 10 < target * 9)
+        lo = half;
+      else if (chunk.TriangleCount() * 10 > target * 11)
+        hi = half;
+      else
+        break;
+    }
+    const auto open = CountOpenEdges(chunk);
+    const std::uint32_t quota = std::uint32_t(chunk.TriangleCount() / 2);
+    const double diagonal = Diagonal(chunk);
+    std::printf("chunk %d: %zu triangles, %zu cut (locked) edges, %zu hole edges -> quota %u\n", c,
+      chunk.TriangleCount(), open.second, open.first, quota);
+    std::printf("  %-26s %7s %9s %12s %14s\n", "", "out", "ms", "Mtri/s rem.", "Hausdorff/diag");
+
+    Row rows[3];
+    for (int variant = 0; variant < 2; ++variant)
+    {
+      SimplifyOptions options;
+      if (variant == 1)
+      {
+        options.NormalWeight = 0;
+      }
+      SimplifyResult result;
+      rows[variant].Seconds = Time([&] {
+        result = Simplify(chunk, 1, [](const double*) { return 0; }, { quota }, options);
+      });
+      const std::vector<std::uint32_t> out = ToChunkIndices(chunk, result);
+      rows[variant].Out = out.size() / 3;
+      rows[variant].Hausdorff = Hausdorff(chunk.Positions, chunk.Indices, out) / diagonal;
+    }
+    std::vector<std::uint32_t> out(chunk.Indices.size());
+    std::size_t count = 0;
+    rows[2].Seconds = Time([&] {
+      count = meshopt_simplify(out.data(), chunk.Indices.data(), chunk.Indices.size(), chunk.Positions.data(),
+        chunk.VertexCount(), 3 * sizeof(float), 3 * std::size_t(quota), 1.0f, meshopt_SimplifyLockBorder, nullptr);
+    });
+    out.resize(count);
+    rows[2].Out = count / 3;
+    rows[2].Hausdorff = Hausdorff(chunk.Positions, chunk.Indices, out) / diagonal;
+    for (int v = 0; v < 3; ++v)
+    {
+      Print(names[v], chunk.TriangleCount(), rows[v]);
+      sum[v].Out += rows[v].Out;
+      sum[v].Seconds += rows[v].Seconds;
+      sum[v].Hausdorff += rows[v].Hausdorff / chunks;
+    }
+    sumIn += chunk.TriangleCount();
+  }
+  std::printf("\nall chunks (time and rate summed, Hausdorff averaged):\n");
+  std::printf("  %-26s %7s %9s %12s %14s\n", "", "out", "ms", "Mtri/s rem.", "Hausdorff/diag");
+  for (int v = 0; v < 3; ++v)
+  {
+    Print(names[v], sumIn, sum[v]);
+  }
+  return 0;
+}
