@@ -115,11 +115,32 @@ private:
   /// A chunk of jobs big enough to keep every thread busy, small enough to bound memory.
   std::size_t ChunkSize() const { return std::size_t(Threads) * 4; }
 
-  void Finish(MadePatch& made) const
+  /// Encodes the patch; its sphere and cone bound what a reader decodes (quantized), not the
+  /// mesh before encoding.
+  void Finish(MadePatch& made, const PatchPrecision& precision) const
   {
-    made.Tight = EnclosingSphere(made.Mesh.Positions.data(), made.Mesh.VertexCount());
-    made.Cone = FaceNormalCone(made.Mesh);
-    made.Encoded = EncodePatch(made.Mesh, Grid);
+    made.Encoded = EncodePatch(made.Mesh, Grid, precision);
+    PatchMesh decoded;
+    DecodePatch(made.Encoded.data(), made.Encoded.size(), Grid, decoded);
+    made.Tight = EnclosingSphere(decoded.Positions.data(), decoded.VertexCount());
+    made.Cone = FaceNormalCone(decoded);
+  }
+
+  /// Leaves keep every position bit; a simplified patch stores its interior on the coarsest
+  /// power-of-two grid whose rounding stays a small fraction of its error (the border keeps the
+  /// full grid, see PatchPrecision). Normals lose 4 of 16 bits inside patches (0.06 degrees).
+  PatchPrecision PrecisionFor(double error) const
+  {
+    PatchPrecision precision;
+    precision.InteriorNormalShift = 4;
+    constexpr double ShareOfError = 1.0 / 32;
+    PatchPrecision coarser = precision;
+    while (++coarser.InteriorPositionShift < QuantizationGrid::Bits &&
+      coarser.PositionError(Grid) <= ShareOfError * error)
+    {
+      precision = coarser;
+    }
+    return precision;
   }
 
   /// Stores a finished patch for `node`: encoded bytes for the file, and the full-precision mesh
@@ -162,7 +183,7 @@ private:
       }
       ParallelFor(count, Threads, [&](std::size_t i) {
         made[i].Mesh = WeldSoup(soups[i]);
-        Finish(made[i]);
+        Finish(made[i], PrecisionFor(0));
       });
       for (std::size_t i = 0; i < count; ++i)
       {
@@ -260,6 +281,7 @@ private:
   {
     std::vector<PatchMesh> children;
     std::vector<Tetra> memberShapes;
+    double childError = 0;
     for (NodeIndex m : w.Members)
     {
       memberShapes.push_back(Forest[m].Geometry);
@@ -267,6 +289,7 @@ private:
       {
         children.emplace_back();
         Intermediate.Get(Results[std::size_t(c)].Intermediate, children.back());
+        childError = std::max(childError, Results[std::size_t(c)].Error);
       }
     }
     std::vector<const PatchMesh*> parts;
@@ -280,14 +303,17 @@ private:
     const std::vector<std::uint32_t> quotas(w.Members.size(), Options.PatchBudget);
     SimplifyResult simplified = Simplify(merged, int(w.Members.size()),
       [&locator](const double p[3]) { return locator.MemberOf(p); }, quotas);
-    w.Error = simplified.Error;
+    // The merged input was already off the original by up to its children's error; storing
+    // the interior on a coarser grid adds its rounding.
+    const PatchPrecision precision = PrecisionFor(simplified.Error + childError);
+    w.Error = simplified.Error + childError + precision.PositionError(Grid);
     w.Collapses = simplified.Collapses;
     w.QuotasMet = simplified.QuotasMet;
     w.Patches.resize(w.Members.size());
     for (std::size_t i = 0; i < w.Members.size(); ++i)
     {
       w.Patches[i].Mesh = std::move(simplified.Regions[i]);
-      Finish(w.Patches[i]);
+      Finish(w.Patches[i], precision);
     }
   }
 
@@ -295,7 +321,6 @@ private:
   /// spheres and cones over the diamond and its children (paper 5.2).
   void SaturateDiamond(DiamondWork& w, bool haveParents)
   {
-    double childError = 0;
     double childSaturatedError = 0;
     std::vector<Sphere> spheres;
     for (std::size_t i = 0; i < w.Members.size(); ++i)
@@ -307,7 +332,6 @@ private:
       for (NodeIndex c : Forest[m].Children)
       {
         NodeResult& child = Results[std::size_t(c)];
-        childError = std::max(childError, child.Error);
         childSaturatedError = std::max(childSaturatedError, child.SaturatedError);
         spheres.push_back(LoadSphere(child.SaturatedSphere));
         cones.push_back(child.Cone);
@@ -315,8 +339,7 @@ private:
       }
       Results[std::size_t(m)].Cone = EnclosingCone(cones);
     }
-    // The merged input was already off the original by up to its children's error.
-    const double error = w.Error + childError;
+    const double error = w.Error;
     const double saturatedError = std::max(error, childSaturatedError);
     float saturatedSphere[4];
     StoreSphere(EnclosingSphere(spheres), saturatedSphere);

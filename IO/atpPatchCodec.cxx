@@ -5,6 +5,7 @@
 #include <meshoptimizer.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -210,11 +211,79 @@ void CheckMesh(const PatchMesh& mesh)
     }
   }
 }
+/// Per vertex: whether it lies on an edge used by exactly one triangle of the patch.
+std::vector<bool> BorderVertices(const std::vector<std::uint32_t>& indices, std::size_t vertexCount)
+{
+  std::vector<std::uint64_t> edges;
+  edges.reserve(indices.size());
+  for (std::size_t t = 0; t < indices.size(); t += 3)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      const std::uint64_t a = indices[t + c], b = indices[t + (c + 1) % 3];
+      edges.push_back(std::min(a, b) << 32 | std::max(a, b));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  std::vector<bool> border(vertexCount, false);
+  for (std::size_t i = 0; i < edges.size();)
+  {
+    std::size_t j = i + 1;
+    while (j < edges.size() && edges[j] == edges[i])
+    {
+      ++j;
+    }
+    if (j - i == 1)
+    {
+      border[edges[i] >> 32] = true;
+      border[edges[i] & 0xffffffffu] = true;
+    }
+    i = j;
+  }
+  return border;
+}
+
+/// Rounds to the nearest multiple of 2^shift that stays within [0, limit].
+std::uint32_t RoundToMultiple(std::uint32_t value, int shift, std::uint32_t limit)
+{
+  if (shift == 0)
+  {
+    return value;
+  }
+  const std::uint64_t step = std::uint64_t(1) << shift;
+  std::uint64_t rounded = (std::uint64_t(value) + step / 2) & ~(step - 1);
+  while (rounded > limit)
+  {
+    rounded -= step;
+  }
+  return static_cast<std::uint32_t>(rounded);
+}
+
+std::int16_t RoundNormal(std::int16_t value, int shift)
+{
+  const int step = 1 << shift;
+  const int rounded = ((int(value) + 32768 + step / 2) & ~(step - 1)) - 32768;
+  return static_cast<std::int16_t>(std::min(32767, std::max(-32767, rounded)));
+}
 } // namespace
 
-std::vector<std::uint8_t> EncodePatch(const PatchMesh& mesh, const QuantizationGrid& grid)
+double PatchPrecision::PositionError(const QuantizationGrid& grid) const
+{
+  // Half a coarse step per axis; the grid's own rounding is the same for every patch.
+  return InteriorPositionShift == 0
+    ? 0
+    : std::sqrt(3.0) * std::ldexp(grid.Step, InteriorPositionShift - 1);
+}
+
+std::vector<std::uint8_t> EncodePatch(
+  const PatchMesh& mesh, const QuantizationGrid& grid, const PatchPrecision& precision)
 {
   CheckMesh(mesh);
+  if (precision.InteriorPositionShift < 0 || precision.InteriorPositionShift >= QuantizationGrid::Bits ||
+    precision.InteriorNormalShift < 0 || precision.InteriorNormalShift > 12)
+  {
+    throw std::invalid_argument("EncodePatch: precision out of range");
+  }
   PatchHeader header{};
   header.Version = PatchFormatVersion;
   header.Flags = mesh.HasColors() ? PatchFlagColors : 0;
@@ -237,6 +306,28 @@ std::vector<std::uint8_t> EncodePatch(const PatchMesh& mesh, const QuantizationG
   std::vector<std::uint32_t> remap(vertexCount);
   const std::size_t used =
     meshopt_optimizeVertexFetchRemap(remap.data(), indices.data(), indexCount, vertexCount);
+  // Border vertices first, each group in fetch order: the interior's zeroed low bits then form
+  // long runs the vertex codec stores in almost nothing.
+  const std::vector<bool> border = BorderVertices(mesh.Indices, vertexCount);
+  std::vector<std::uint32_t> byFetch(used);
+  for (std::size_t v = 0; v < vertexCount; ++v)
+  {
+    if (remap[v] != ~0u)
+    {
+      byFetch[remap[v]] = std::uint32_t(v);
+    }
+  }
+  std::uint32_t next = 0;
+  for (const bool borderFirst : { true, false })
+  {
+    for (const std::uint32_t v : byFetch)
+    {
+      if (border[v] == borderFirst)
+      {
+        remap[v] = next++;
+      }
+    }
+  }
   meshopt_remapIndexBuffer(indices.data(), indices.data(), indexCount, remap.data());
 
   std::vector<std::uint32_t> positions(3 * used);
@@ -251,12 +342,20 @@ std::vector<std::uint8_t> EncodePatch(const PatchMesh& mesh, const QuantizationG
       continue;
     }
     const std::array<std::uint32_t, 3> q = grid.Quantize(&mesh.Positions[3 * v]);
+    const int positionShift = border[v] ? 0 : precision.InteriorPositionShift;
     for (int a = 0; a < 3; ++a)
     {
-      positions[3 * to + a] = q[a];
-      header.Min[a] = std::min(header.Min[a], q[a]);
+      positions[3 * to + a] = RoundToMultiple(q[a], positionShift, QuantizationGrid::MaxInteger);
+      header.Min[a] = std::min(header.Min[a], positions[3 * to + a]);
     }
     EncodeNormal(&mesh.Normals[3 * v], &normals[2 * to]);
+    if (!border[v])
+    {
+      for (int k = 0; k < 2; ++k)
+      {
+        normals[2 * to + k] = RoundNormal(normals[2 * to + k], precision.InteriorNormalShift);
+      }
+    }
     if (mesh.HasColors())
     {
       std::copy_n(&mesh.Colors[4 * v], 4, &colors[4 * to]);

@@ -42,12 +42,27 @@ public:
   using std::runtime_error::runtime_error;
 };
 
-/// Reorders triangles for the vertex cache and vertices for fetch order (vertices no triangle
-/// uses are dropped), quantizes positions on `grid`, and encodes. BoundaryEdges is not stored.
-/// Throws std::invalid_argument for an inconsistent mesh (array sizes, indices out of range,
-/// counts over the caps).
+/// How much precision a patch's interior may give up. Vertices on the patch's border (on an edge
+/// used by one of its triangles) are the only ones other patches share, so they always keep the
+/// full grid: coarser interior vertices never open a crack. Coarse levels, whose simplification
+/// error dwarfs the grid step, store their interior on a coarser grid and compress better.
+struct PatchPrecision
+{
+  /// Interior positions are rounded to multiples of 2^InteriorPositionShift grid steps.
+  int InteriorPositionShift = 0;
+  /// Interior normals drop this many low bits of their 16-bit octahedral coordinates.
+  int InteriorNormalShift = 0;
+
+  /// The largest distance an interior vertex moves, for `grid` (object units).
+  double PositionError(const QuantizationGrid& grid) const;
+};
+
+/// Reorders triangles for the vertex cache and vertices for fetch order, border vertices first
+/// (vertices no triangle uses are dropped), quantizes positions on `grid` with `precision`, and
+/// encodes. BoundaryEdges is not stored. Throws std::invalid_argument for an inconsistent mesh
+/// (array sizes, indices out of range, counts over the caps) or precision.
 VTKATPIO_EXPORT std::vector<std::uint8_t> EncodePatch(
-  const PatchMesh& mesh, const QuantizationGrid& grid);
+  const PatchMesh& mesh, const QuantizationGrid& grid, const PatchPrecision& precision = {});
 
 /// Decodes into `out`, reusing its capacity: positions through grid.Dequantize, unit normals,
 /// colors when stored, indices all below the vertex count; BoundaryEdges is left empty.

@@ -12,9 +12,11 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkCommand.h"
+#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkStaticPointLocator.h"
 
 #include <gtest/gtest.h>
 
@@ -136,8 +138,8 @@ std::set<Position> QuantizedInput(vtkPolyData* mesh, const atp::QuantizationGrid
   return positions;
 }
 
-/// Open edges (used by one triangle) of a welded mesh, as position pairs.
-std::vector<Edge> OpenEdges(const atp::PatchMesh& mesh)
+/// How many triangles use each edge (vertex pair) of an indexed mesh.
+std::map<std::pair<std::uint32_t, std::uint32_t>, int> EdgeUses(const atp::PatchMesh& mesh)
 {
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
   for (std::size_t t = 0; t < mesh.TriangleCount(); ++t)
@@ -149,6 +151,13 @@ std::vector<Edge> OpenEdges(const atp::PatchMesh& mesh)
       ++uses[{ std::min(a, b), std::max(a, b) }];
     }
   }
+  return uses;
+}
+
+/// Open edges (used by one triangle) of a welded mesh, as position pairs.
+std::vector<Edge> OpenEdges(const atp::PatchMesh& mesh)
+{
+  const auto uses = EdgeUses(mesh);
   std::vector<Edge> open;
   const auto at = [&mesh](std::uint32_t v) {
     return Position{ { mesh.Positions[3 * v], mesh.Positions[3 * v + 1], mesh.Positions[3 * v + 2] } };
@@ -215,7 +224,6 @@ std::string Construction::Path;
 TEST_F(Construction, EveryCutIsCrackFree)
 {
   const atp::ModelFile model = atp::ModelFile::Open(Path);
-  const std::set<Position> input = QuantizedInput(Mesh, GridOf(model));
   const std::uint64_t inputBoundary = model.Header().InputBoundaryEdges;
   ASSERT_EQ(inputBoundary, 3u * 14);
 
@@ -257,13 +265,55 @@ TEST_F(Construction, EveryCutIsCrackFree)
     }
     EXPECT_EQ(CountLoops(open), 3) << "view " << view;
     EXPECT_LE(open.size(), inputBoundary);
-    for (std::size_t i = 0; i < mesh.VertexCount(); ++i)
-    {
-      const Position p{ { mesh.Positions[3 * i], mesh.Positions[3 * i + 1], mesh.Positions[3 * i + 2] } };
-      ASSERT_TRUE(input.count(p)) << "a vertex that is not an input vertex";
-    }
   }
   EXPECT_GT(cutSizes.size(), 10u) << "the views should give many different cuts";
+}
+
+TEST_F(Construction, VerticesAreInputVerticesBorderBitExact)
+{
+  // Every vertex of every patch is an input vertex. Patch borders (the only vertices patches
+  // share) are bit-exact on the model's grid at every level; interiors of simplified patches may
+  // sit on a coarser grid, within the patch's error.
+  const atp::ModelFile model = atp::ModelFile::Open(Path);
+  const atp::QuantizationGrid grid = GridOf(model);
+  const std::set<Position> input = QuantizedInput(Mesh, grid);
+  vtkNew<vtkStaticPointLocator> locator;
+  locator->SetDataSet(Mesh);
+  locator->BuildLocator();
+  std::size_t border = 0, interior = 0;
+  atp::PatchMesh patch;
+  for (std::uint32_t i = 0; i < model.NodeCount(); ++i)
+  {
+    const atp::ModelNode& node = model.Node(i);
+    atp::DecodePatch(model.PatchData(i), node.PatchBytes, grid, patch);
+    std::set<std::uint32_t> onBorder;
+    for (const auto& [edge, uses] : EdgeUses(patch))
+    {
+      if (uses == 1)
+      {
+        onBorder.insert(edge.first);
+        onBorder.insert(edge.second);
+      }
+    }
+    for (std::uint32_t v = 0; v < patch.VertexCount(); ++v)
+    {
+      const float* p = &patch.Positions[3 * v];
+      if (onBorder.count(v) || node.Children[0] < 0)
+      {
+        ++border;
+        ASSERT_TRUE(input.count(Position{ { p[0], p[1], p[2] } }))
+          << "node " << i << ": a border or leaf vertex off the input";
+        continue;
+      }
+      ++interior;
+      const double x[3] = { p[0], p[1], p[2] };
+      double q[3];
+      Mesh->GetPoint(locator->FindClosestPoint(x), q);
+      ASSERT_LE(std::sqrt(vtkMath::Distance2BetweenPoints(x, q)), node.Error) << "node " << i;
+    }
+  }
+  EXPECT_GT(border, 0u);
+  EXPECT_GT(interior, 0u);
 }
 
 TEST_F(Construction, ClosedSurfaceCutsHaveNoOpenEdge)

@@ -340,6 +340,43 @@ TEST(PatchCodec, TopBinadeCoordinatesAreBitExact)
     TriangleSet(mesh.Positions, mesh.Indices));
 }
 
+TEST(PatchCodec, CoarserInteriorKeepsTheBorderExactAndShrinks)
+{
+  const atp::PatchMesh mesh = Terrain(0.25f, 0.5f, 0.25f, 40, false, 3);
+  const atp::QuantizationGrid grid = GridFor(0, 1);
+  atp::PatchPrecision coarse;
+  coarse.InteriorPositionShift = 12;
+  coarse.InteriorNormalShift = 4;
+  const std::vector<std::uint8_t> exact = atp::EncodePatch(mesh, grid);
+  const std::vector<std::uint8_t> bytes = atp::EncodePatch(mesh, grid, coarse);
+  EXPECT_LT(bytes.size(), exact.size() * 9 / 10);
+  atp::PatchMesh decoded, lossless;
+  atp::DecodePatch(bytes.data(), bytes.size(), grid, decoded);
+  atp::DecodePatch(exact.data(), exact.size(), grid, lossless);
+  ASSERT_EQ(decoded.Indices, lossless.Indices) << "precision must not change the order";
+  // The grid's outer ring of vertices is the patch border: bit-exact. Inside, every vertex is
+  // within the stated error, and some really moved.
+  std::size_t moved = 0;
+  for (std::size_t v = 0; v < decoded.VertexCount(); ++v)
+  {
+    const float* a = &decoded.Positions[3 * v];
+    const float* b = &lossless.Positions[3 * v];
+    const double d = std::sqrt(double(a[0] - b[0]) * (a[0] - b[0]) +
+      double(a[1] - b[1]) * (a[1] - b[1]) + double(a[2] - b[2]) * (a[2] - b[2]));
+    const bool border = b[0] == 0.25f || b[0] == 0.5f || b[1] == 0.5f || b[1] == 0.75f;
+    if (border)
+    {
+      EXPECT_EQ(d, 0.0) << "border vertex " << v;
+    }
+    EXPECT_LE(d, coarse.PositionError(grid));
+    moved += d > 0;
+    EXPECT_LE(AngleDegrees(&decoded.Normals[3 * v], &lossless.Normals[3 * v]), 0.1);
+  }
+  EXPECT_GT(moved, decoded.VertexCount() / 2);
+  coarse.InteriorPositionShift = -1;
+  EXPECT_THROW(atp::EncodePatch(mesh, grid, coarse), std::invalid_argument);
+}
+
 TEST(PatchCodec, EmptyPatch)
 {
   const atp::QuantizationGrid grid = GridFor(0, 1);
