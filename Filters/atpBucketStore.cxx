@@ -236,6 +236,11 @@ void BucketStore::Clear(BucketIndex bucketIndex)
       // A frame being written is freed when its batch finishes.
       PageFrame[page] = NotResident;
     }
+    if (PageOnDisk[page])
+    {
+      // Construction empties buckets for good: their disk space goes back at once.
+      Disk.Release(std::uint64_t(page) * PageBytes, PageBytes);
+    }
     PageOnDisk[page] = 0;
     FreePages.push_back(page);
   }

@@ -405,6 +405,7 @@ private:
       std::copy(r.SaturatedSphere, r.SaturatedSphere + 4, node.SaturatedSphere);
       bytes.resize(r.EncodedBytes);
       Encoded.ReadAt(r.EncodedOffset, bytes.data(), bytes.size());
+      Encoded.Release(r.EncodedOffset, r.EncodedBytes); // the model grows as this shrinks
       writer.AddPatch(bytes.data(), bytes.size());
     }
     ModelHeader header;

@@ -1,7 +1,6 @@
 #include "atpPatchStore.h"
 
 #include <cstring>
-#include <fcntl.h>
 #include <vector>
 
 namespace atp
@@ -79,9 +78,7 @@ void PatchStore::Get(const Handle& handle, PatchMesh& out) const
 
 void PatchStore::Release(const Handle& handle)
 {
-  // Best effort: a file system without hole punching just keeps the blocks.
-  ::fallocate(File.Descriptor(), FALLOC_FL_PUNCH_HOLE | FALLOC_FL_KEEP_SIZE, off_t(handle.Offset),
-    off_t(handle.Bytes));
+  File.Release(handle.Offset, handle.Bytes);
   Live -= handle.Bytes;
 }
 

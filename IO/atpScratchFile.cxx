@@ -101,4 +101,9 @@ void ScratchFile::Resize(std::uint64_t bytes)
   }
 }
 
+void ScratchFile::Release(std::uint64_t offset, std::uint64_t bytes)
+{
+  ::fallocate(Fd, FALLOC_FL_PUNCH_HOLE | FALLOC_FL_KEEP_SIZE, off_t(offset), off_t(bytes));
+}
+
 } // namespace atp

@@ -29,6 +29,9 @@ public:
   /// Grows or shrinks the file (for memory mapping); reserves the blocks so a full disk is
   /// reported here rather than as SIGBUS on first touch of a mapped page.
   void Resize(std::uint64_t bytes);
+  /// Gives the blocks of a range that will not be read again back to the file system (a hole;
+  /// best effort: file systems without hole punching keep them).
+  void Release(std::uint64_t offset, std::uint64_t bytes);
   int Descriptor() const { return Fd; }
 
 private:
