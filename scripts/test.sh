@@ -5,4 +5,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
 build_dir=${ATP_BUILD_DIR:-build}
-xvfb-run -a ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)"
+# --no-tests=error: a configuration that lost its tests must fail, not pass empty.
+xvfb-run -a ctest --test-dir "$build_dir" --output-on-failure --no-tests=error -j "$(nproc)"
