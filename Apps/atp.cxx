@@ -1,4 +1,5 @@
 // atp: the command line of Adaptive TetraPuzzles for VTK.
+#include "atpCalibrate.h"
 #include "atpCommandLine.h"
 #include "atpConstruction.h"
 #include "atpModelCommands.h"
@@ -185,6 +186,7 @@ void PrintHelp()
                "  build      build a model (.atp) from a mesh file\n"
                "  info       describe a model (--json for machines)\n"
                "  verify     check every checksum, invariant and patch of a model\n"
+               "  calibrate  find and store a model's error scale from rendered views\n"
                "  generate   write a large test surface as binary PLY\n\n"
                "Run 'atp COMMAND --help' for the options of a command.\n";
 }
@@ -217,6 +219,10 @@ int main(int argc, char** argv)
     if (command == "verify")
     {
       return atp::VerifyCommand(Rest(argc, argv));
+    }
+    if (command == "calibrate")
+    {
+      return atp::CalibrateCommand(Rest(argc, argv));
     }
     std::fprintf(stderr, "atp: unknown command '%s' (see atp --help)\n", command.c_str());
     return 2;

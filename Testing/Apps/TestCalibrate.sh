@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# atp calibrate on the sample mesh: it finds a scale, stores it (and only it), the stored scale
+# passes its own check, and a tiny scale fails it: the picture comparison can fail.
+#   TestCalibrate.sh ATP_BINARY DATA_DIR
+set -u
+# Offscreen OpenGL still needs an X display here: provide one when there is none.
+if [ -z "${DISPLAY:-}" ] && command -v xvfb-run > /dev/null; then
+  exec xvfb-run -a bash "$0" "$@"
+fi
+atp=$1
+data=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+passed=0
+out=""
+
+# expect CODE PATTERN -- command...: exit code CODE and output (stdout+stderr) matching PATTERN.
+expect() {
+  local code=$1 pattern=$2
+  shift 3
+  local status
+  out=$("$@" 2>&1)
+  status=$?
+  if [ "$status" -ne "$code" ] || ! grep -qE -- "$pattern" <<<"$out"; then
+    echo "FAIL: $* -> exit $status (want $code), output:"
+    sed 's/^/    /' <<<"$out" | head -30
+    echo "    (wanted /$pattern/)"
+    failures=$((failures + 1))
+  else
+    passed=$((passed + 1))
+  fi
+}
+
+small=(--views 3 --size 160x120)
+expect 0 "--threshold T" -- "$atp" calibrate --help
+expect 2 "size must be" -- "$atp" calibrate "$data/bumpy-torus.ply" --size 100
+expect 1 "not an ATP model" -- "$atp" calibrate "$data/bumpy-torus.ply" "${small[@]}"
+expect 0 "done:" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/x.atp" --quiet
+cp "$work/x.atp" "$work/original.atp"
+
+expect 0 "dry run: .* left unchanged" -- "$atp" calibrate "$work/x.atp" "${small[@]}" --dry-run
+cmp -s "$work/x.atp" "$work/original.atp" || { echo "FAIL: --dry-run changed the model"; failures=$((failures + 1)); }
+
+expect 0 "stored error scale [0-9.e+-]+ in" -- "$atp" calibrate "$work/x.atp" "${small[@]}"
+echo "$out"
+scale=$(sed -nE 's/^stored error scale ([0-9.e+-]+) in .*/\1/p' <<<"$out")
+expect 0 "error scale $scale," -- "$atp" info "$work/x.atp"
+expect 0 "x.atp: valid" -- "$atp" verify "$work/x.atp"
+# Only the header changed.
+cmp -s <(tail -c +417 "$work/x.atp") <(tail -c +417 "$work/original.atp") || { echo "FAIL: calibrate changed more than the header"; failures=$((failures + 1)); }
+
+# The scale found shows no difference; one far below it does, in at least one view.
+expect 0 "scale $scale: no visible difference in 3 views" -- "$atp" calibrate "$work/x.atp" "${small[@]}" --check "$scale"
+expect 1 "scale 0.001: visible differences in [1-3] of 3 views" -- "$atp" calibrate "$work/x.atp" "${small[@]}" --check 0.001
+echo "$out"
+
+echo "$passed passed, $failures failed"
+[ "$failures" -eq 0 ]
