@@ -2,7 +2,10 @@
 // diamond-like chunks of a real mesh: speed (triangles removed per second) and the symmetric,
 // sampled Hausdorff distance between input and output, relative to the chunk's box diagonal.
 //   atp-bench-simplify [MESH] [CHUNK_TRIANGLES] [CHUNKS]
-// MESH defaults to Data/bumpy-torus.ply. A chunk is the set of triangles whose centroid lies in
+// MESH defaults to Data/bumpy-torus.ply; for chunks the size of a real diamond (2-8 members x 2
+// children x 1000-4000 triangles) of a larger mesh:
+//   atp generate -n 2000000 -o /tmp/g.ply && atp-bench-simplify /tmp/g.ply 16000 6
+// A chunk is the set of triangles whose centroid lies in
 // a box around a mesh vertex: its cut border is the "diamond-external" boundary (locked by both
 // simplifiers), the input's own holes inside it are the original boundary.
 #include "atpMergePatches.h"
