@@ -335,25 +335,30 @@ std::vector<TetId> DiamondMembers(TetId id)
   return members;
 }
 
+std::uint64_t MortonCode(std::uint32_t x, std::uint32_t y, std::uint32_t z)
+{
+  const auto spread = [](std::uint64_t v) {
+    // Spreads 21 bits so that two zero bits separate each.
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffull;
+    v = (v | v << 16) & 0x1f0000ff0000ffull;
+    v = (v | v << 8) & 0x100f00f00f00f00full;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ull;
+    v = (v | v << 2) & 0x1249249249249249ull;
+    return v;
+  };
+  return spread(x) | spread(y) << 1 | spread(z) << 2;
+}
+
 std::uint64_t CentroidMorton(const Tetra& t)
 {
-  auto spread = [](std::uint64_t x) {
-    // Spreads 21 bits so that two zero bits separate each.
-    x &= 0x1fffff;
-    x = (x | x << 32) & 0x1f00000000ffffull;
-    x = (x | x << 16) & 0x1f0000ff0000ffull;
-    x = (x | x << 8) & 0x100f00f00f00f00full;
-    x = (x | x << 4) & 0x10c30c30c30c30c3ull;
-    x = (x | x << 2) & 0x1249249249249249ull;
-    return x;
-  };
-  std::uint64_t code = 0;
+  std::uint32_t c[3];
   for (int k = 0; k < 3; ++k)
   {
     const Wide sum = Wide(t.V[0][k]) + t.V[1][k] + t.V[2][k] + t.V[3][k];
-    code |= spread(std::uint64_t(sum / 4)) << k;
+    c[k] = std::uint32_t(sum / 4);
   }
-  return code;
+  return MortonCode(c[0], c[1], c[2]);
 }
 
 LatticeFrame::LatticeFrame(const double boxMin[3], const double boxMax[3])

@@ -119,6 +119,8 @@ VTKATPFILTERS_EXPORT int FullMemberCount(DiamondType type);
 /// Members that would leave the root cube do not exist and are not listed.
 VTKATPFILTERS_EXPORT std::vector<TetId> DiamondMembers(TetId id);
 
+/// Bit-interleaved code of three 21-bit coordinates (x in the lowest bit).
+VTKATPFILTERS_EXPORT std::uint64_t MortonCode(std::uint32_t x, std::uint32_t y, std::uint32_t z);
 /// Morton code (bit-interleaved) of the centroid, 21 bits per axis.
 VTKATPFILTERS_EXPORT std::uint64_t CentroidMorton(const Tetra& t);
 

@@ -1,5 +1,7 @@
 #include "atpModelEdit.h"
 
+#include "atpFileDescriptor.h"
+
 #include "atpChecksum.h"
 #include "atpModelFile.h"
 
@@ -20,17 +22,6 @@ namespace
   throw ModelError(path + ": " + problem);
 }
 
-struct Descriptor
-{
-  int Fd;
-  ~Descriptor()
-  {
-    if (Fd >= 0)
-    {
-      ::close(Fd);
-    }
-  }
-};
 } // namespace
 
 void SetModelErrorScale(const std::string& path, float scale)
@@ -41,7 +32,7 @@ void SetModelErrorScale(const std::string& path, float scale)
   }
   // Open for writing first and validate after: the header we write is then the one of the
   // file we validated, unless the path was replaced in between, which the inode check catches.
-  const Descriptor fd{ ::open(path.c_str(), O_WRONLY | O_CLOEXEC) };
+  const FileDescriptor fd{ ::open(path.c_str(), O_WRONLY | O_CLOEXEC) };
   struct stat opened;
   if (fd.Fd < 0 || ::fstat(fd.Fd, &opened) != 0)
   {

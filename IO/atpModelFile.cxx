@@ -1,5 +1,7 @@
 #include "atpModelFile.h"
 
+#include "atpFileDescriptor.h"
+
 #include "atpChecksum.h"
 
 #include <xxhash.h>
@@ -76,25 +78,13 @@ bool AllFinite(const double* values, std::size_t count)
   return std::all_of(values, values + count, [](double v) { return std::isfinite(v); });
 }
 
-// Closes the descriptor however Open leaves; the map outlives it.
-struct Descriptor
-{
-  int Fd;
-  ~Descriptor()
-  {
-    if (Fd >= 0)
-    {
-      ::close(Fd);
-    }
-  }
-};
 } // namespace
 
 ModelFile ModelFile::Open(const std::string& path)
 {
   ModelFile file;
   file.FilePath = path;
-  const Descriptor fd{ ::open(path.c_str(), O_RDONLY | O_CLOEXEC) };
+  const FileDescriptor fd{ ::open(path.c_str(), O_RDONLY | O_CLOEXEC) };
   struct stat info;
   if (fd.Fd < 0 || ::fstat(fd.Fd, &info) != 0)
   {

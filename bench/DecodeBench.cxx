@@ -6,6 +6,7 @@
 #include "atpChecksum.h"
 #include "atpNormalEncoding.h"
 #include "atpPatchCodec.h"
+#include "atpTetra.h"
 #include "atpQuantizationGrid.h"
 #include "atpTriangleSource.h"
 
@@ -46,30 +47,19 @@ std::vector<atp::SoupTriangle> ReadAll(atp::TriangleSource& source)
   return triangles;
 }
 
-std::uint64_t Spread(std::uint32_t v) // 21 bits to every third of 63
-{
-  std::uint64_t x = v & 0x1fffff;
-  x = (x | x << 32) & 0x1f00000000ffffull;
-  x = (x | x << 16) & 0x1f0000ff0000ffull;
-  x = (x | x << 8) & 0x100f00f00f00f00full;
-  x = (x | x << 4) & 0x10c30c30c30c30c3ull;
-  x = (x | x << 2) & 0x1249249249249249ull;
-  return x;
-}
-
 void SortByMorton(std::vector<atp::SoupTriangle>& triangles, const atp::Box& box)
 {
   std::vector<std::pair<std::uint64_t, std::size_t>> keys(triangles.size());
   for (std::size_t t = 0; t < triangles.size(); ++t)
   {
-    std::uint64_t key = 0;
+    std::uint32_t cell[3];
     for (int a = 0; a < 3; ++a)
     {
       const double extent = std::max(box.Max[a] - box.Min[a], 1e-30);
       const double c = (triangles[t].V[0][a] + triangles[t].V[1][a] + triangles[t].V[2][a]) / 3;
-      key |= Spread(static_cast<std::uint32_t>((c - box.Min[a]) / extent * 0x1fffff)) << a;
+      cell[a] = static_cast<std::uint32_t>((c - box.Min[a]) / extent * 0x1fffff);
     }
-    keys[t] = { key, t };
+    keys[t] = { atp::MortonCode(cell[0], cell[1], cell[2]), t };
   }
   std::sort(keys.begin(), keys.end());
   std::vector<atp::SoupTriangle> sorted(triangles.size());
