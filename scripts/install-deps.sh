@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config libgtest-dev
+  time                   # /usr/bin/time: peak memory in the benchmarks
   libvtk9-dev            # VTK 9.1: modules, pipeline, OpenGL2 rendering, vtkTesting
   libcgal-dev            # minimum enclosing balls (Min_sphere_of_spheres_d)
   libtet1.5-dev          # TetGen: conformity checks in tests
