@@ -63,18 +63,19 @@ int InfoCommand(const std::vector<std::string>& arguments)
   const ModelHeader& h = model.Header();
   const std::map<int, LevelFigures> levels = Levels(model);
   const double perTriangle = double(h.FileBytes) / double(std::max<std::uint64_t>(1, h.InputTriangles));
+  const bool colors = (h.Flags & ModelFlagColors) != 0;
   if (cl.Has("json"))
   {
     std::printf("{\"file\": \"%s\", \"version\": %u, \"bytes\": %llu, \"nodes\": %llu, "
                 "\"levels\": %u, \"input_triangles\": %llu, \"input_boundary_edges\": %llu, "
-                "\"stored_triangles\": %llu, \"bytes_per_input_triangle\": %.3f, "
+                "\"colors\": %s, \"stored_triangles\": %llu, \"bytes_per_input_triangle\": %.3f, "
                 "\"leaf_capacity\": %u, \"patch_budget\": %u, \"error_scale\": %g, "
                 "\"box_min\": [%.9g, %.9g, %.9g], \"box_max\": [%.9g, %.9g, %.9g], "
                 "\"quantization_step\": %.9g, \"per_level\": [",
       cl.Positional(0).c_str(), h.Version, static_cast<unsigned long long>(h.FileBytes),
       static_cast<unsigned long long>(h.NodeCount), h.Depth + 1,
       static_cast<unsigned long long>(h.InputTriangles),
-      static_cast<unsigned long long>(h.InputBoundaryEdges),
+      static_cast<unsigned long long>(h.InputBoundaryEdges), colors ? "true" : "false",
       static_cast<unsigned long long>(h.StoredTriangles), perTriangle, h.LeafCapacity,
       h.PatchBudget, double(h.ErrorScale), h.BoxMin[0], h.BoxMin[1], h.BoxMin[2], h.BoxMax[0],
       h.BoxMax[1], h.BoxMax[2], h.QuantizationStep);
@@ -93,9 +94,10 @@ int InfoCommand(const std::vector<std::string>& arguments)
   }
   std::printf("%s: ATP model version %u, %.1f MiB\n", cl.Positional(0).c_str(), h.Version,
     double(h.FileBytes) / (1 << 20));
-  std::printf("input: %s triangles, %llu boundary edges, box (%g %g %g) - (%g %g %g)\n",
+  std::printf("input: %s triangles, %llu boundary edges, %s, box (%g %g %g) - (%g %g %g)\n",
     FormatCount(double(h.InputTriangles)).c_str(),
-    static_cast<unsigned long long>(h.InputBoundaryEdges), h.BoxMin[0], h.BoxMin[1], h.BoxMin[2],
+    static_cast<unsigned long long>(h.InputBoundaryEdges),
+    colors ? "vertex colors" : "no colors", h.BoxMin[0], h.BoxMin[1], h.BoxMin[2],
     h.BoxMax[0], h.BoxMax[1], h.BoxMax[2]);
   std::printf("model: %llu nodes, %u levels, %s triangles stored over all levels, %.2f "
               "bytes/input triangle\n",

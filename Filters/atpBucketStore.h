@@ -29,8 +29,9 @@ class VTKATPFILTERS_EXPORT BucketStore
 {
 public:
   using BucketIndex = std::uint32_t;
-  // 1024 records = 52 KiB = 13 file-system blocks: writes never touch a block partially.
-  static constexpr std::size_t PageRecords = 1024;
+  // 256 records = 16 KiB = 4 file-system blocks: writes never touch a block partially, and a
+  // bucket's last, partly filled page wastes little disk (leaves are many).
+  static constexpr std::size_t PageRecords = 256;
 
   BucketStore(const std::string& scratchDirectory, std::size_t memoryBudgetBytes);
   /// Waits for the background writes (their errors are lost: the store is going away).

@@ -182,7 +182,7 @@ private:
         Partition.ReleaseLeaf(leaves[first + i]);
       }
       ParallelFor(count, Threads, [&](std::size_t i) {
-        made[i].Mesh = WeldSoup(soups[i]);
+        made[i].Mesh = WeldSoup(soups[i], Input.HasColors);
         Finish(made[i], PrecisionFor(0));
       });
       for (std::size_t i = 0; i < count; ++i)
@@ -195,11 +195,13 @@ private:
     }
   }
 
-  static PatchMesh WeldSoup(const std::vector<SoupTriangle>& soup)
+  /// Without input colors the soup's (white) corner colors are left out: the model then has none.
+  static PatchMesh WeldSoup(const std::vector<SoupTriangle>& soup, bool colors)
   {
     PatchMesh corners;
     corners.Positions.reserve(9 * soup.size());
     corners.Normals.reserve(9 * soup.size());
+    corners.Colors.reserve(colors ? 12 * soup.size() : 0);
     for (const SoupTriangle& t : soup)
     {
       for (int c = 0; c < 3; ++c)
@@ -208,6 +210,10 @@ private:
         DecodeNormal(t.Normals[c], n);
         corners.Positions.insert(corners.Positions.end(), t.V[c], t.V[c] + 3);
         corners.Normals.insert(corners.Normals.end(), n, n + 3);
+        if (colors)
+        {
+          corners.Colors.insert(corners.Colors.end(), t.Colors[c], t.Colors[c] + 4);
+        }
       }
       corners.BoundaryEdges.push_back(t.BoundaryEdges);
     }
@@ -426,6 +432,7 @@ private:
     header.PatchBudget = Options.PatchBudget;
     header.Depth = std::uint32_t(Forest.Depth());
     header.ErrorScale = Options.ErrorScale;
+    header.Flags = Input.HasColors ? ModelFlagColors : 0;
     writer.Commit(header, nodes);
 
     Stats.Nodes = nodes.size();

@@ -63,6 +63,7 @@ MeshTriangleSource::MeshTriangleSource(
 void MeshTriangleSource::CheckVerticesAndBound()
 {
   this->Statistics.VerticesRead = this->Vertices.Count;
+  this->Statistics.HasColors = this->Vertices.HasColors();
   for (std::uint64_t i = 0; i < this->Vertices.Count; ++i)
   {
     float p[3];
@@ -148,6 +149,11 @@ void MeshTriangleSource::BoundResidentMemory()
   if (this->Vertices.FileBacked)
   {
     ReleaseResidentPages(this->Vertices.Base, this->Vertices.Count * this->Vertices.Stride);
+    if (this->Vertices.HasColors())
+    {
+      ReleaseResidentPages(
+        this->Vertices.Colors, this->Vertices.Count * this->Vertices.ColorStride);
+    }
   }
   this->Sketch.ReleaseResidentPages();
   ReleaseResidentPages(this->NormalSums.Data(), this->NormalSums.Size() * sizeof(this->NormalSums[0]));
@@ -169,6 +175,19 @@ void MeshTriangleSource::SetCornerNormals(const std::uint32_t triangle[3], SoupT
     {
       EncodeNormal(sum.data(), soup.Normals[c]);
     }
+  }
+}
+
+void MeshTriangleSource::SetCornerColors(const std::uint32_t triangle[3], SoupTriangle& soup) const
+{
+  if (!this->Vertices.HasColors())
+  {
+    std::memset(soup.Colors, 255, sizeof(soup.Colors));
+    return;
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    this->Vertices.GetColor(triangle[c], soup.Colors[c]);
   }
 }
 
@@ -215,6 +234,7 @@ std::size_t MeshTriangleSource::Read(SoupTriangle* out, std::size_t max)
     }
     soup.BoundaryEdges = boundary;
     this->SetCornerNormals(triangle, soup);
+    this->SetCornerColors(triangle, soup);
     std::memset(soup.Padding, 0, sizeof(soup.Padding));
     ++n;
   }

@@ -29,12 +29,14 @@ public:
   std::uint64_t ExpectedTriangles() const override { return this->KeptTriangles; }
   std::size_t Read(SoupTriangle* out, std::size_t max) override;
   const InputStats& Stats() const override { return this->Statistics; }
+  bool HasColors() const override { return this->Statistics.HasColors; }
 
 private:
   void CheckVerticesAndBound();
   /// The first pass: boundary sketch and area-weighted vertex normal sums.
   void FirstPass();
   void SetCornerNormals(const std::uint32_t triangle[3], SoupTriangle& soup) const;
+  void SetCornerColors(const std::uint32_t triangle[3], SoupTriangle& soup) const;
   /// Gets the corner positions; false for a degenerate triangle.
   bool Keep(const std::uint32_t triangle[3], float corners[3][3]) const;
   bool StartNextBatch();

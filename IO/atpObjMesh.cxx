@@ -27,6 +27,21 @@ LineKind Classify(std::string_view line, std::string_view& rest)
   return keyword == "v" ? LineKind::Vertex : (keyword == "f" ? LineKind::Face : LineKind::Other);
 }
 
+/// The common extension "v x y z r g b": `rest` (after x, y, z) is exactly three fractions of 1.
+bool ParseColor(std::string_view rest, std::uint8_t rgb[3])
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    double value;
+    if (!ParseReal(NextWord(rest), value))
+    {
+      return false;
+    }
+    rgb[k] = ColorByte(value);
+  }
+  return NextWord(rest).empty();
+}
+
 class ObjMesh final : public PolygonMesh
 {
 public:
@@ -34,6 +49,7 @@ public:
     : File(path)
     , Reader(this->File, 0)
     , Positions(scratchDirectory, 0)
+    , Colors(scratchDirectory, 0)
   {
     this->ReadVertices();
     this->Rewind();
@@ -45,6 +61,12 @@ public:
     view.Base = reinterpret_cast<const unsigned char*>(this->Positions.Data());
     view.Count = this->VertexCount;
     view.FileBacked = true;
+    if (this->AllColored && this->VertexCount > 0)
+    {
+      view.Colors = this->Colors.Data();
+      view.ColorStride = 3;
+      view.ColorComponents = 3;
+    }
     return view;
   }
 
@@ -63,6 +85,8 @@ private:
   InputFile File;
   BufferedReader Reader;
   ScratchArray<float> Positions;
+  ScratchArray<std::uint8_t> Colors; ///< r, g, b per vertex while every vertex has them
+  bool AllColored = true;
   std::uint64_t VertexCount = 0;
   std::uint64_t VerticesSoFar = 0; // 'v' lines before the current line, for relative indices
   std::vector<std::uint32_t> Indices;
@@ -109,6 +133,16 @@ void ObjMesh::ReadVertices()
       this->Positions.Resize(std::max<std::size_t>(needed, 2 * this->Positions.Size()));
     }
     std::copy(p, p + 3, &this->Positions[needed - 3]);
+    std::uint8_t rgb[3];
+    this->AllColored = this->AllColored && ParseColor(rest, rgb);
+    if (this->AllColored)
+    {
+      if (needed > this->Colors.Size())
+      {
+        this->Colors.Resize(this->Positions.Size());
+      }
+      std::copy(rgb, rgb + 3, &this->Colors[needed - 3]);
+    }
     ++this->VertexCount;
   }
 }

@@ -1,6 +1,7 @@
 // Wavefront OBJ input: 'v' and 'f' lines, everything else ignored. A first pass over the file
 // stores the vertices in a ScratchArray; faces, which may be interleaved with vertices and use
-// relative (negative) indices, are then streamed in batches by later passes.
+// relative (negative) indices, are then streamed in batches by later passes. Vertex colors come
+// from the common extension "v x y z r g b" (fractions of 1) when every vertex has them.
 #ifndef atpObjMesh_h
 #define atpObjMesh_h
 

@@ -24,6 +24,10 @@ enum class Role : std::uint8_t
   X,
   Y,
   Z,
+  Red,
+  Green,
+  Blue,
+  Alpha,
   Corners
 };
 
@@ -47,10 +51,11 @@ struct FaceLayout
   PlyType IndexType = PlyType::Int32;
 };
 
-/// One record's values that matter: x, y, z of a vertex, the corners of a face.
+/// One record's values that matter: x, y, z and the color of a vertex (indexed by Role - 1), the
+/// corners of a face.
 struct Record
 {
-  double Xyz[3] = { 0, 0, 0 };
+  double Values[7] = { 0, 0, 0, 0, 0, 0, 0 };
   std::vector<std::int64_t> Corners = std::vector<std::int64_t>(MaxCorners); // allocated once
   std::size_t CornerCount = 0;
 };
@@ -290,7 +295,7 @@ bool ReadRecord(Decoder& decoder, const std::vector<Field>& fields, Record& reco
     {
       bool ok = field.Use == Role::None
         ? decoder.Skip(field.Type, 1)
-        : decoder.Real(field.Type, record.Xyz[static_cast<int>(field.Use) - 1]);
+        : decoder.Real(field.Type, record.Values[static_cast<int>(field.Use) - 1]);
       if (!ok)
       {
         return false;
@@ -366,6 +371,32 @@ FaceLayout MakeFaceLayout(const PlyElement& faces, std::size_t corners, PlyForma
   return layout;
 }
 
+/// Index of the first property with one of `names`; Properties.size() when there is none.
+std::size_t PropertyIndex(
+  const PlyElement& element, std::initializer_list<const char*> names, bool wantList)
+{
+  for (std::size_t i = 0; i < element.Properties.size(); ++i)
+  {
+    for (const char* name : names)
+    {
+      if (element.Properties[i].Name == name && element.Properties[i].IsList == wantList)
+      {
+        return i;
+      }
+    }
+  }
+  return element.Properties.size();
+}
+
+/// A color component as a byte: reals are fractions of 1, ushort values fractions of 65535,
+/// other integers fractions of 255.
+std::uint8_t PlyColorByte(double value, PlyType type)
+{
+  return ColorByte(type == PlyType::UInt16
+      ? value / 65535
+      : (IsPlyIntegerType(type) ? value / 255 : value));
+}
+
 bool HasLists(const PlyElement& element)
 {
   return std::any_of(element.Properties.begin(), element.Properties.end(),
@@ -386,6 +417,8 @@ private:
   /// Index of the first property with one of `names`; fails naming `what` when there is none.
   std::size_t FindProperty(const PlyElement& element, std::initializer_list<const char*> names,
     bool wantList, const std::string& what) const;
+  /// Gives the color properties their roles when the vertices have red, green and blue.
+  void FindColors(const PlyElement& vertices);
   void CheckClaimedCount(const PlyElement& element, const std::string& what) const;
   void ReadVertexElement(const PlyElement& element, const std::string& scratchDirectory);
   bool ReadVerticesInPlace(const PlyElement& element);
@@ -435,6 +468,9 @@ private:
   FaceLayout Layout;
   std::unique_ptr<MappedRegion> MappedVertices;
   std::optional<ScratchArray<float>> CopiedVertices;
+  std::optional<ScratchArray<std::uint8_t>> CopiedColors; ///< RGBA
+  int ColorComponents = 0; ///< 0 (no colors), 3 or 4
+  PlyType ColorTypes[4] = {};
   VertexView View;
   std::uint64_t FaceCount = 0;
   std::uint64_t FaceOffset = 0;
@@ -461,6 +497,7 @@ PlyMesh::PlyMesh(const std::string& path, const std::string& scratchDirectory)
   this->VertexFields[this->FindProperty(vertices, { "x" }, false, "'x' property")].Use = Role::X;
   this->VertexFields[this->FindProperty(vertices, { "y" }, false, "'y' property")].Use = Role::Y;
   this->VertexFields[this->FindProperty(vertices, { "z" }, false, "'z' property")].Use = Role::Z;
+  this->FindColors(vertices);
   if (faceElement < this->Header.Elements.size())
   {
     const PlyElement& faces = this->Header.Elements[faceElement];
@@ -522,17 +559,31 @@ std::size_t PlyMesh::FindElement(const char* name) const
 std::size_t PlyMesh::FindProperty(const PlyElement& element,
   std::initializer_list<const char*> names, bool wantList, const std::string& what) const
 {
-  for (std::size_t i = 0; i < element.Properties.size(); ++i)
+  const std::size_t i = PropertyIndex(element, names, wantList);
+  if (i == element.Properties.size())
   {
-    for (const char* name : names)
-    {
-      if (element.Properties[i].Name == name && element.Properties[i].IsList == wantList)
-      {
-        return i;
-      }
-    }
+    this->File.Fail("bad PLY header: the " + element.Name + " element has no " + what);
   }
-  this->File.Fail("bad PLY header: the " + element.Name + " element has no " + what);
+  return i;
+}
+
+void PlyMesh::FindColors(const PlyElement& vertices)
+{
+  const std::size_t none = vertices.Properties.size();
+  const std::size_t found[4] = { PropertyIndex(vertices, { "red", "diffuse_red" }, false),
+    PropertyIndex(vertices, { "green", "diffuse_green" }, false),
+    PropertyIndex(vertices, { "blue", "diffuse_blue" }, false),
+    PropertyIndex(vertices, { "alpha", "diffuse_alpha" }, false) };
+  if (found[0] == none || found[1] == none || found[2] == none)
+  {
+    return;
+  }
+  this->ColorComponents = found[3] == none ? 3 : 4;
+  for (int k = 0; k < this->ColorComponents; ++k)
+  {
+    this->VertexFields[found[k]].Use = static_cast<Role>(static_cast<int>(Role::Red) + k);
+    this->ColorTypes[k] = vertices.Properties[found[k]].Type;
+  }
 }
 
 void PlyMesh::CheckClaimedCount(const PlyElement& element, const std::string& what) const
@@ -560,33 +611,56 @@ void PlyMesh::ReadVertexElement(const PlyElement& element, const std::string& sc
     return;
   }
   this->CopiedVertices.emplace(scratchDirectory, static_cast<std::size_t>(3 * element.Count));
+  if (this->ColorComponents > 0)
+  {
+    this->CopiedColors.emplace(scratchDirectory, static_cast<std::size_t>(4 * element.Count));
+  }
   this->WithDecoder([&](auto& decoder) { this->ReadVertexRecords(decoder, element.Count); });
   this->View.Base = reinterpret_cast<const unsigned char*>(this->CopiedVertices->Data());
   this->View.Stride = 3 * sizeof(float);
+  if (this->CopiedColors)
+  {
+    this->View.Colors = this->CopiedColors->Data();
+    this->View.ColorStride = 4;
+    this->View.ColorComponents = 4;
+  }
 }
 
 bool PlyMesh::ReadVerticesInPlace(const PlyElement& element)
 {
-  // Zero copy when the records hold x, y, z as consecutive little-endian floats.
+  // Zero copy when the records hold x, y, z as consecutive little-endian floats, and the
+  // colors (if any) as consecutive bytes.
   if (this->Header.Format != PlyFormat::BinaryLittleEndian || !HostIsLittleEndian ||
     HasLists(element) || element.Count == 0)
   {
     return false;
   }
   std::size_t stride = 0;
-  std::size_t offsets[3] = { 0, 0, 0 };
-  bool allFloat = true;
+  std::size_t offsets[7] = { 0, 0, 0, 0, 0, 0, 0 }; // by Role - 1
+  bool typesFit = true;
   for (std::size_t i = 0; i < element.Properties.size(); ++i)
   {
     const Role use = this->VertexFields[i].Use;
     if (use != Role::None)
     {
       offsets[static_cast<int>(use) - 1] = stride;
-      allFloat = allFloat && element.Properties[i].Type == PlyType::Float32;
+      typesFit = typesFit &&
+        element.Properties[i].Type == (use <= Role::Z ? PlyType::Float32 : PlyType::UInt8);
     }
     stride += PlyTypeSize(element.Properties[i].Type);
   }
-  if (!allFloat || offsets[1] != offsets[0] + 4 || offsets[2] != offsets[0] + 8)
+  const auto consecutive = [&offsets](int first, int count, std::size_t size)
+  {
+    for (int k = 1; k < count; ++k)
+    {
+      if (offsets[first + k] != offsets[first] + std::size_t(k) * size)
+      {
+        return false;
+      }
+    }
+    return true;
+  };
+  if (!typesFit || !consecutive(0, 3, sizeof(float)) || !consecutive(3, this->ColorComponents, 1))
   {
     return false;
   }
@@ -595,6 +669,12 @@ bool PlyMesh::ReadVerticesInPlace(const PlyElement& element)
   this->MappedVertices = this->File.Map(start, static_cast<std::size_t>(bytes));
   this->View.Base = this->MappedVertices->Data() + offsets[0];
   this->View.Stride = stride;
+  if (this->ColorComponents > 0)
+  {
+    this->View.Colors = this->MappedVertices->Data() + offsets[3];
+    this->View.ColorStride = stride;
+    this->View.ColorComponents = this->ColorComponents;
+  }
   this->Reader.Seek(start + bytes);
   return true;
 }
@@ -603,6 +683,7 @@ template<class Decoder>
 void PlyMesh::ReadVertexRecords(Decoder& decoder, std::uint64_t count)
 {
   float* out = this->CopiedVertices->Data();
+  std::uint8_t* colors = this->CopiedColors ? this->CopiedColors->Data() : nullptr;
   for (std::uint64_t i = 0; i < count; ++i, out += 3)
   {
     if (!ReadRecord(decoder, this->VertexFields, this->CurrentRecord, "vertex", i))
@@ -612,7 +693,16 @@ void PlyMesh::ReadVertexRecords(Decoder& decoder, std::uint64_t count)
     }
     for (int a = 0; a < 3; ++a)
     {
-      out[a] = ToFloatCoordinate(this->CurrentRecord.Xyz[a]);
+      out[a] = ToFloatCoordinate(this->CurrentRecord.Values[a]);
+    }
+    if (colors)
+    {
+      std::uint8_t* rgba = colors + 4 * i;
+      rgba[3] = 255;
+      for (int k = 0; k < this->ColorComponents; ++k)
+      {
+        rgba[k] = PlyColorByte(this->CurrentRecord.Values[3 + k], this->ColorTypes[k]);
+      }
     }
   }
 }

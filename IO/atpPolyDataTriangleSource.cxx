@@ -3,8 +3,10 @@
 #include "atpMeshTriangleSource.h"
 #include "atpPolygonMesh.h"
 
+#include "vtkAOSDataArrayTemplate.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
@@ -16,8 +18,29 @@ namespace atp
 {
 namespace
 {
-/// A PolygonMesh over a vtkPolyData: points copied once as floats (the soup's precision), the
-/// polygons and the triangles of strips handed out in batches.
+/// The point colors (see OpenPolyDataTriangleSource); nullptr when there are none.
+vtkAOSDataArrayTemplate<unsigned char>* FindColors(vtkPolyData* mesh)
+{
+  vtkPointData* data = mesh ? mesh->GetPointData() : nullptr;
+  if (!data)
+  {
+    return nullptr;
+  }
+  for (vtkDataArray* array :
+    { data->GetScalars(), data->GetArray("RGB"), data->GetArray("RGBA"), data->GetArray("Colors") })
+  {
+    auto* colors = vtkArrayDownCast<vtkAOSDataArrayTemplate<unsigned char>>(array);
+    if (colors && (colors->GetNumberOfComponents() == 3 || colors->GetNumberOfComponents() == 4) &&
+      colors->GetNumberOfTuples() == mesh->GetNumberOfPoints())
+    {
+      return colors;
+    }
+  }
+  return nullptr;
+}
+
+/// A PolygonMesh over a vtkPolyData: points copied once as floats (the soup's precision), colors
+/// read in place, the polygons and the triangles of strips handed out in batches.
 class PolyDataMesh final : public PolygonMesh
 {
 public:
@@ -40,6 +63,7 @@ public:
         this->Positions[std::size_t(3 * i + k)] = ToFloatCoordinate(p[k]);
       }
     }
+    this->Colors = FindColors(mesh);
     this->Rewind();
   }
 
@@ -48,6 +72,12 @@ public:
     VertexView view;
     view.Base = reinterpret_cast<const unsigned char*>(this->Positions.data());
     view.Count = this->Positions.size() / 3;
+    if (this->Colors)
+    {
+      view.Colors = this->Colors->GetPointer(0);
+      view.ColorComponents = this->Colors->GetNumberOfComponents();
+      view.ColorStride = std::size_t(view.ColorComponents);
+    }
     return view;
   }
 
@@ -121,6 +151,7 @@ private:
   std::string Name;
   vtkSmartPointer<vtkPolyData> Mesh;
   std::vector<float> Positions;
+  vtkAOSDataArrayTemplate<unsigned char>* Colors = nullptr; ///< held by Mesh
   vtkSmartPointer<vtkCellArrayIterator> Polys, Strips;
   std::vector<std::uint32_t> Indices, Sizes;
 };

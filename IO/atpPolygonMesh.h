@@ -4,6 +4,7 @@
 #ifndef atpPolygonMesh_h
 #define atpPolygonMesh_h
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -20,19 +21,36 @@ constexpr std::uint64_t MaxVertices = std::numeric_limits<std::uint32_t>::max();
 constexpr std::size_t PolygonBatchFaces = 16384;
 
 /// Vertex i's x, y, z are three consecutive floats at Base + i * Stride: a packed array, or the
-/// vertex records of a memory-mapped binary PLY read in place.
+/// vertex records of a memory-mapped binary PLY read in place. Colors, when the input has them,
+/// are ColorComponents bytes (red, green, blue, and alpha when there are 4) at
+/// Colors + i * ColorStride: other color types are converted to bytes when the vertices are read.
 struct VertexView
 {
   const unsigned char* Base = nullptr;
   std::size_t Stride = 3 * sizeof(float);
   std::uint64_t Count = 0;
-  /// The positions are in a file-backed mapping, whose pages may be released (and come back
-  /// from the file) to bound resident memory; false for heap arrays.
+  const unsigned char* Colors = nullptr;
+  std::size_t ColorStride = 0;
+  int ColorComponents = 0;
+  /// The positions and colors are in file-backed mappings, whose pages may be released (and
+  /// come back from the file) to bound resident memory; false for heap arrays.
   bool FileBacked = false;
+
+  bool HasColors() const { return this->Colors != nullptr; }
 
   void Get(std::uint32_t i, float p[3]) const
   {
     std::memcpy(p, this->Base + i * this->Stride, 3 * sizeof(float));
+  }
+
+  /// Opaque unless the input gives an alpha.
+  void GetColor(std::uint32_t i, std::uint8_t rgba[4]) const
+  {
+    const unsigned char* c = this->Colors + i * this->ColorStride;
+    rgba[0] = c[0];
+    rgba[1] = c[1];
+    rgba[2] = c[2];
+    rgba[3] = this->ColorComponents == 4 ? c[3] : 255;
   }
 };
 
@@ -55,6 +73,12 @@ inline float ToFloatCoordinate(double x)
     return x > 0 ? std::numeric_limits<float>::infinity() : -std::numeric_limits<float>::infinity();
   }
   return static_cast<float>(x);
+}
+
+/// A color component given as a fraction of 1, as a byte (clamped; NaN gives 0).
+inline std::uint8_t ColorByte(double fraction)
+{
+  return static_cast<std::uint8_t>(fraction > 0 ? std::min(fraction, 1.0) * 255 + 0.5 : 0);
 }
 
 /// "nan", "inf" or "-inf" for the first non-finite coordinate of p; nullptr when all are finite.

@@ -32,7 +32,7 @@ struct VTKATPIO_EXPORT Box
   }
 };
 
-/// One input triangle with its corner positions and normals copied (soup form), 52 bytes.
+/// One input triangle with its corner positions, normals and colors copied (soup form), 64 bytes.
 struct SoupTriangle
 {
   float V[3][3];
@@ -43,8 +43,10 @@ struct SoupTriangle
   /// (used by exactly one triangle). Simplification must know these (paper, section 5.2).
   std::uint8_t BoundaryEdges;
   std::uint8_t Padding[3];
+  /// Corner colors, RGBA; opaque white when the input has none (the bytes stay deterministic).
+  std::uint8_t Colors[3][4];
 };
-static_assert(sizeof(SoupTriangle) == 52, "SoupTriangle is an on-disk record: keep it packed");
+static_assert(sizeof(SoupTriangle) == 64, "SoupTriangle is an on-disk record: keep it packed");
 
 /// A problem with an input file. The message names the file and says what is wrong.
 class VTKATPIO_EXPORT InputError : public std::runtime_error
@@ -61,6 +63,7 @@ struct InputStats
   std::uint64_t TrianglesEmitted = 0;    ///< after fan triangulation, minus dropped ones
   std::uint64_t DegenerateDropped = 0;   ///< repeated corner or zero area: dropped, not fatal
   std::uint64_t BoundaryEdges = 0;       ///< edges used by exactly one triangle
+  bool HasColors = false;                ///< the input has per-vertex colors
 };
 
 class VTKATPIO_EXPORT TriangleSource
@@ -81,6 +84,10 @@ public:
   virtual std::size_t Read(SoupTriangle* out, std::size_t max) = 0;
 
   virtual const InputStats& Stats() const = 0;
+
+  /// Whether the corners carry the input's colors (known as soon as the source is open);
+  /// otherwise they are opaque white.
+  virtual bool HasColors() const { return false; }
 };
 
 /// Opens PLY (ASCII or binary), OBJ, STL (ASCII or binary) or VTP by file extension.

@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 triangles=${1:-50000000}
 scratch=${2:-$(mktemp -d /tmp/atp-bench.XXXXXX)}
-cleanup() { rm -f "$scratch/bench.ply"; [ -n "${2:-}" ] || rmdir "$scratch" 2>/dev/null || true; }
+cleanup() { rm -f "$scratch/bench.ply" "$scratch/bench.atp"; [ -n "${2:-}" ] || rmdir "$scratch" 2>/dev/null || true; }
 trap cleanup EXIT
 
 [ -x build/bin/atp ] || bash scripts/build.sh

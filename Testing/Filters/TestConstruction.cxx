@@ -14,9 +14,11 @@
 #include "vtkCommand.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkStaticPointLocator.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <gtest/gtest.h>
 
@@ -487,5 +489,82 @@ TEST_F(Construction, CancelledBuildLeavesThePreviousModelUntouched)
   EXPECT_EQ(builder->Build(), 0);
   EXPECT_NE(std::string(builder->GetErrorMessage()).find("cancelled"), std::string::npos);
   EXPECT_EQ(ReadBytes(path), "previous model");
+  std::remove(path.c_str());
+}
+
+TEST_F(Construction, InputColorsReachEveryLevel)
+{
+  // RGB point colors made from the positions: the model says it has colors, every patch of
+  // every level carries them, and leaf and border vertices (input vertices, bit-exact) have
+  // their input vertex's color, opaque.
+  vtkNew<vtkPolyData> colored;
+  colored->DeepCopy(Torus(120, 60, 2));
+  vtkNew<vtkUnsignedCharArray> rgb;
+  rgb->SetNumberOfComponents(3);
+  const auto byte = [](double x, double range) { return std::lround(127.5 * (1 + x / range)); };
+  for (vtkIdType i = 0; i < colored->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    colored->GetPoint(i, p);
+    rgb->InsertNextTuple3(byte(p[0], 4.1), byte(p[1], 4.1), byte(p[2], 1.1));
+  }
+  colored->GetPointData()->SetScalars(rgb);
+  const std::string path = TempPath("colored.atp");
+  ASSERT_EQ(BuildModel(colored, path, 2, 300, 150), 1);
+  const atp::ModelFile model = atp::ModelFile::Open(path);
+  EXPECT_EQ(model.Header().Flags & atp::ModelFlagColors, atp::ModelFlagColors);
+
+  const atp::QuantizationGrid grid = GridOf(model);
+  std::map<Position, std::array<std::uint8_t, 4>> inputColors; // by quantized position
+  for (vtkIdType i = 0; i < colored->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    colored->GetPoint(i, p);
+    const float f[3] = { float(p[0]), float(p[1]), float(p[2]) };
+    Position q;
+    grid.Dequantize(grid.Quantize(f).data(), q.data());
+    const std::uint8_t* c = rgb->GetPointer(3 * i);
+    inputColors[q] = { { c[0], c[1], c[2], 255 } };
+  }
+  std::set<int> levels;
+  std::size_t checked = 0;
+  atp::PatchMesh patch;
+  for (std::uint32_t i = 0; i < model.NodeCount(); ++i)
+  {
+    const atp::ModelNode& node = model.Node(i);
+    atp::DecodePatch(model.PatchData(i), node.PatchBytes, grid, patch);
+    if (patch.VertexCount() == 0)
+    {
+      continue;
+    }
+    levels.insert(atp::TetId{ node.Tet }.Level());
+    ASSERT_EQ(patch.Colors.size(), 4 * patch.VertexCount()) << "node " << i;
+    std::set<std::uint32_t> onBorder;
+    for (const auto& [edge, uses] : EdgeUses(patch))
+    {
+      if (uses == 1)
+      {
+        onBorder.insert(edge.first);
+        onBorder.insert(edge.second);
+      }
+    }
+    for (std::uint32_t v = 0; v < patch.VertexCount(); ++v)
+    {
+      if (!onBorder.count(v) && node.Children[0] >= 0)
+      {
+        continue;
+      }
+      const float* p = &patch.Positions[3 * v];
+      const auto it = inputColors.find(Position{ { p[0], p[1], p[2] } });
+      ASSERT_NE(it, inputColors.end()) << "node " << i;
+      const std::array<std::uint8_t, 4> color{ { patch.Colors[4 * v], patch.Colors[4 * v + 1],
+        patch.Colors[4 * v + 2], patch.Colors[4 * v + 3] } };
+      ASSERT_EQ(color, it->second) << "node " << i << ", vertex " << v;
+      ++checked;
+    }
+  }
+  EXPECT_EQ(levels.size(), std::size_t(model.Header().Depth) + 1);
+  EXPECT_GT(checked, inputColors.size());
+  EXPECT_TRUE(atp::ExtractCut(model, atp::SelectLevel(model, 0)).HasColors());
   std::remove(path.c_str());
 }

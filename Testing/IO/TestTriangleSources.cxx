@@ -5,9 +5,12 @@
 #include "atpTriangleSource.h"
 
 #include <vtkCellArray.h>
+#include <vtkFloatArray.h>
 #include <vtkNew.h>
+#include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkXMLPolyDataWriter.h>
 
 #include <gtest/gtest.h>
@@ -36,6 +39,7 @@ struct Mesh
 {
   std::vector<std::array<double, 3>> Points;
   std::vector<std::vector<std::int64_t>> Faces;
+  std::vector<std::array<std::uint8_t, 4>> Colors; ///< RGBA per point, or empty
 };
 
 /// A flat nx by ny grid of unit quads in z = 0; with `quads` the faces are quads, else triangles.
@@ -68,6 +72,17 @@ Mesh Grid(int nx, int ny, bool quads)
   return mesh;
 }
 
+/// `mesh` with a different color per point; opaque when the file will carry no alpha.
+Mesh Colored(Mesh mesh, bool alpha)
+{
+  for (std::size_t i = 0; i < mesh.Points.size(); ++i)
+  {
+    mesh.Colors.push_back({ { std::uint8_t(40 + 7 * i), std::uint8_t(250 - 5 * i),
+      std::uint8_t(3 * i + 1), std::uint8_t(alpha ? 200 - i : 255) } });
+  }
+  return mesh;
+}
+
 /// A closed tetrahedron, outward oriented.
 Mesh Tetrahedron()
 {
@@ -84,6 +99,7 @@ struct Result
   atp::Box Bounds;
   std::uint64_t Expected = 0;
   atp::InputStats Stats;
+  bool HasColors = false;
 };
 
 Result ReadAll(const std::string& path, const std::string& scratch, std::size_t chunk = 5)
@@ -92,6 +108,7 @@ Result ReadAll(const std::string& path, const std::string& scratch, std::size_t 
   Result result;
   result.Bounds = source->Bounds();
   result.Expected = source->ExpectedTriangles();
+  result.HasColors = source->HasColors();
   std::vector<atp::SoupTriangle> buffer(chunk);
   while (std::size_t n = source->Read(buffer.data(), buffer.size()))
   {
@@ -149,6 +166,44 @@ std::vector<std::array<float, 9>> Soup(const Result& result)
     soup.push_back(s);
   }
   return soup;
+}
+
+using CornerColors = std::array<std::uint8_t, 12>;
+
+/// The colors of `mesh` (opaque white without) at the corners of ExpectedSoup's triangles.
+std::vector<CornerColors> ExpectedColors(const Mesh& mesh)
+{
+  std::vector<CornerColors> colors;
+  for (const auto& face : mesh.Faces)
+  {
+    for (std::size_t k = 1; k + 1 < face.size(); ++k)
+    {
+      CornerColors t;
+      t.fill(255);
+      const std::int64_t corners[3] = { face[0], face[k], face[k + 1] };
+      for (std::size_t c = 0; c < 3 && !mesh.Colors.empty(); ++c)
+      {
+        std::copy_n(mesh.Colors[std::size_t(corners[c])].begin(), 4, t.begin() + 4 * c);
+      }
+      colors.push_back(t);
+    }
+  }
+  return colors;
+}
+
+/// Checks the corner colors of a source read of `mesh`, and that it says whether it has colors.
+void ExpectColors(const Result& result, const Mesh& mesh)
+{
+  EXPECT_EQ(result.HasColors, !mesh.Colors.empty());
+  EXPECT_EQ(result.Stats.HasColors, !mesh.Colors.empty());
+  std::vector<CornerColors> colors;
+  for (const atp::SoupTriangle& t : result.Triangles)
+  {
+    CornerColors c;
+    std::memcpy(c.data(), t.Colors, sizeof(t.Colors));
+    colors.push_back(c);
+  }
+  EXPECT_EQ(colors, ExpectedColors(mesh));
 }
 
 /// Checks a source read of `mesh` (an open or closed manifold) against the mesh itself.
@@ -238,7 +293,16 @@ struct PlyOptions
   bool ExtraElement = false;    // an element with a list between vertices and faces
   bool FacesFirst = false;
   bool ShuffledCoordinates = false; // z, x, y order
+  std::string ColorType;            // the mesh's colors after z, of this type; none when empty
+  std::string ColorPrefix;          // "diffuse_" for diffuse_red, ...
+  bool Alpha = false;
 };
+
+/// A color byte as a PLY value of `type`: integers other than ushort hold bytes, reals fractions.
+double PlyColorValue(std::uint8_t c, const std::string& type)
+{
+  return type == "ushort" ? c * 257.0 : (type == "float" || type == "double" ? c / 255.0 : c);
+}
 
 void Put(std::string& out, const std::string& type, double value, const PlyOptions& options)
 {
@@ -299,6 +363,13 @@ std::string PlyBytes(const Mesh& mesh, const PlyOptions& options = PlyOptions())
   vertexHeader += options.ShuffledCoordinates
     ? "property " + c + " z\nproperty " + c + " x\nproperty " + c + " y\n"
     : "property " + c + " x\nproperty " + c + " y\nproperty " + c + " z\n";
+  const char* colorNames[4] = { "red", "green", "blue", "alpha" };
+  const std::size_t colorComponents = options.ColorType.empty() ? 0 : (options.Alpha ? 4 : 3);
+  for (std::size_t k = 0; k < colorComponents; ++k)
+  {
+    vertexHeader +=
+      "property " + options.ColorType + " " + options.ColorPrefix + colorNames[k] + "\n";
+  }
   if (options.ExtraProperties)
   {
     vertexHeader += "property float nx\n";
@@ -338,6 +409,11 @@ std::string PlyBytes(const Mesh& mesh, const PlyOptions& options = PlyOptions())
       {
         Put(vertices, c, x, options);
       }
+    }
+    for (std::size_t k = 0; k < colorComponents; ++k)
+    {
+      Put(vertices, options.ColorType, PlyColorValue(mesh.Colors[i][k], options.ColorType),
+        options);
     }
     if (options.ExtraProperties)
     {
@@ -395,9 +471,16 @@ std::string ObjBytes(const Mesh& mesh)
   std::ostringstream out;
   out.precision(17);
   out << "# test\no thing\n";
-  for (const auto& p : mesh.Points)
+  for (std::size_t i = 0; i < mesh.Points.size(); ++i)
   {
-    out << "v " << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+    const auto& p = mesh.Points[i];
+    out << "v " << p[0] << ' ' << p[1] << ' ' << p[2];
+    if (!mesh.Colors.empty())
+    {
+      out << ' ' << mesh.Colors[i][0] / 255.0 << ' ' << mesh.Colors[i][1] / 255.0 << ' '
+          << mesh.Colors[i][2] / 255.0;
+    }
+    out << '\n';
   }
   for (const auto& face : mesh.Faces)
   {
@@ -573,6 +656,45 @@ TEST_F(TriangleSources, UppercaseExtension)
   ExpectMesh(this->Read(this->Write("TET.PLY", PlyBytes(mesh))), mesh, 0);
 }
 
+TEST_F(TriangleSources, PlyVertexColors)
+{
+  // Read in place (little-endian float coordinates, byte colors) or copied (any other layout);
+  // ushort and real colors are converted to bytes.
+  struct Case
+  {
+    const char* Format;
+    const char* Coordinates;
+    const char* Colors;
+    const char* Prefix;
+    bool Alpha;
+  };
+  const Case cases[] = {
+    { "binary_little_endian", "float", "uchar", "", true },
+    { "binary_little_endian", "float", "uchar", "", false },
+    { "binary_little_endian", "double", "uchar", "", true },
+    { "binary_little_endian", "float", "float", "diffuse_", false },
+    { "binary_big_endian", "float", "uchar", "", true },
+    { "binary_big_endian", "double", "ushort", "diffuse_", true },
+    { "ascii", "float", "uchar", "", false },
+    { "ascii", "double", "float", "", true },
+  };
+  for (const Case& c : cases)
+  {
+    const Mesh mesh = Colored(Grid(4, 3, true), c.Alpha);
+    PlyOptions options;
+    options.Format = c.Format;
+    options.CoordinateType = c.Coordinates;
+    options.ColorType = c.Colors;
+    options.ColorPrefix = c.Prefix;
+    options.Alpha = c.Alpha;
+    SCOPED_TRACE(std::string(c.Format) + " " + c.Coordinates + " " + c.Colors + " " + c.Prefix +
+      (c.Alpha ? " with alpha" : ""));
+    const Result result = this->Read(this->Write("colors.ply", PlyBytes(mesh, options)));
+    ExpectMesh(result, mesh, 14);
+    ExpectColors(result, mesh);
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // OBJ
 
@@ -637,6 +759,14 @@ TEST_F(TriangleSources, ObjCornerFormsNegativeIndicesPolygonsAndInterleaving)
   mesh.Points = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 }, { 2, 0.5, 0 } };
   mesh.Faces = { { 0, 1, 2, 3 }, { 1, 4, 2 } };
   ExpectMesh(this->Read(this->Write("mixed.obj", text)), mesh, 5);
+}
+
+TEST_F(TriangleSources, ObjVertexColors)
+{
+  const Mesh mesh = Colored(Grid(3, 3, true), false);
+  const Result result = this->Read(this->Write("colors.obj", ObjBytes(mesh)));
+  ExpectMesh(result, mesh, 12);
+  ExpectColors(result, mesh);
 }
 
 TEST_F(TriangleSources, ObjRelativeIndicesCountOnlyEarlierVertices)
@@ -734,6 +864,78 @@ TEST_F(TriangleSources, VtpPolygonsAndStrips)
   EXPECT_EQ(Soup(result), ExpectedSoup(mesh));
   EXPECT_EQ(result.Stats.BoundaryEdges, 8u);
   EXPECT_EQ(result.Stats.TrianglesEmitted, 6u);
+}
+
+TEST_F(TriangleSources, VtpPointColors)
+{
+  // Unsigned char colors: RGB in an array of that name (the active scalars being something
+  // else), or RGBA as the active scalars.
+  for (bool alpha : { false, true })
+  {
+    const Mesh mesh = Colored(Grid(3, 2, false), alpha);
+    vtkNew<vtkPoints> points;
+    vtkNew<vtkUnsignedCharArray> colors;
+    colors->SetNumberOfComponents(alpha ? 4 : 3);
+    vtkNew<vtkFloatArray> other;
+    for (std::size_t i = 0; i < mesh.Points.size(); ++i)
+    {
+      points->InsertNextPoint(mesh.Points[i].data());
+      for (int k = 0; k < colors->GetNumberOfComponents(); ++k)
+      {
+        colors->InsertNextValue(mesh.Colors[i][std::size_t(k)]);
+      }
+      other->InsertNextValue(1);
+    }
+    vtkNew<vtkCellArray> polys;
+    for (const auto& face : mesh.Faces)
+    {
+      const vtkIdType ids[3] = { face[0], face[1], face[2] };
+      polys->InsertNextCell(3, ids);
+    }
+    vtkNew<vtkPolyData> polyData;
+    polyData->SetPoints(points);
+    polyData->SetPolys(polys);
+    if (alpha)
+    {
+      colors->SetName("paint");
+      polyData->GetPointData()->SetScalars(colors);
+    }
+    else
+    {
+      colors->SetName("RGB");
+      polyData->GetPointData()->AddArray(colors);
+      other->SetName("temperature");
+      polyData->GetPointData()->SetScalars(other);
+    }
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    writer->SetInputData(polyData);
+    writer->SetFileName(this->Path("colors.vtp").c_str());
+    ASSERT_EQ(writer->Write(), 1);
+    SCOPED_TRACE(alpha ? "RGBA scalars" : "RGB array");
+    const Result result = this->Read(this->Path("colors.vtp"));
+    ExpectMesh(result, mesh, 10);
+    ExpectColors(result, mesh);
+  }
+}
+
+TEST_F(TriangleSources, WithoutColorsCornersAreOpaqueWhite)
+{
+  const Mesh mesh = Grid(3, 2, false);
+  PlyOptions loneRed;
+  loneRed.ExtraProperties = true; // a red without green and blue is no color
+  for (const std::string& path : { this->Write("plain.ply", PlyBytes(mesh)),
+         this->Write("red.ply", PlyBytes(mesh, loneRed)), this->Write("plain.obj", ObjBytes(mesh)),
+         this->Write("plain.stl", BinaryStlBytes(mesh, "")) })
+  {
+    SCOPED_TRACE(path);
+    ExpectColors(this->Read(path), mesh);
+  }
+  // OBJ colors count only when every vertex has them.
+  Mesh triangle;
+  triangle.Points = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } };
+  triangle.Faces = { { 0, 1, 2 } };
+  ExpectColors(this->Read(this->Write("partial.obj", "v 0 0 0 1 0 0\nv 1 0 0\nv 0 1 0 0 0 1\nf 1 2 3\n")),
+    triangle);
 }
 
 // ---------------------------------------------------------------------------------------------
