@@ -9,82 +9,53 @@
 namespace atp
 {
 
-/// Sum of weighted squared distances to planes: Q(p) = p'Ap + 2b'p + c.
-struct Quadric
-{
-  double A00 = 0, A01 = 0, A02 = 0, A11 = 0, A12 = 0, A22 = 0;
-  double B0 = 0, B1 = 0, B2 = 0;
-  double C = 0;
-
-  /// The plane n.p + d = 0 (n of unit length), with weight w.
-  void AddPlane(const double n[3], double d, double w)
-  {
-    A00 += w * n[0] * n[0];
-    A01 += w * n[0] * n[1];
-    A02 += w * n[0] * n[2];
-    A11 += w * n[1] * n[1];
-    A12 += w * n[1] * n[2];
-    A22 += w * n[2] * n[2];
-    B0 += w * d * n[0];
-    B1 += w * d * n[1];
-    B2 += w * d * n[2];
-    C += w * d * d;
-  }
-
-  void Add(const Quadric& q)
-  {
-    A00 += q.A00;
-    A01 += q.A01;
-    A02 += q.A02;
-    A11 += q.A11;
-    A12 += q.A12;
-    A22 += q.A22;
-    B0 += q.B0;
-    B1 += q.B1;
-    B2 += q.B2;
-    C += q.C;
-  }
-
-  double Evaluate(const double p[3]) const
-  {
-    const double x = p[0], y = p[1], z = p[2];
-    return x * (A00 * x + 2 * (A01 * y + A02 * z + B0)) + y * (A11 * y + 2 * (A12 * z + B1)) +
-      z * (A22 * z + 2 * B2) + C;
-  }
-};
-
-/// The attribute half of Hoppe's quadric, stored flat as W, then G (3 per attribute), then D
-/// (one per attribute): Stride(m) doubles for m attributes. An attribute s with the linear field
-/// s(p) = g.p + d over a triangle of weight w contributes w (g.p + d - s)^2; its p'gg'p, d g and
-/// d^2 terms go into the position Quadric, the rest is kept here.
-namespace AttributeQuadric
+/// A quadric stored flat, so that one vertex's whole state is one contiguous record: A (6, the
+/// upper triangle), B (3), C, then Hoppe's attribute part W, G (3 per attribute) and D (one per
+/// attribute): Size(m) doubles for m attributes. Q(p, s) = p'Ap + 2b'p + c + the attribute
+/// terms; an attribute s with the linear field s(p) = g.p + d over a triangle of weight w
+/// contributes w (g.p + d - s)^2, whose p'gg'p, d g and d^2 terms go into A, B and C.
+namespace Quadric
 {
 
-inline std::size_t Stride(int attributes)
+inline std::size_t Size(int attributes)
 {
-  return 1 + 4 * std::size_t(attributes);
+  return 11 + 4 * std::size_t(attributes);
 }
 
-/// Adds the triangle of plane quadric `q` and attribute part `a` whose attribute j has the
-/// field g[3j..3j+3), d[j], weighted by w.
-inline void AddField(Quadric& q, double* a, int attributes, const double* g, const double* d, double w)
+/// The plane n.p + d = 0 (n of unit length), with weight w.
+inline void AddPlane(double* q, const double n[3], double d, double w)
 {
-  a[0] += w;
-  double* G = a + 1;
+  q[0] += w * n[0] * n[0];
+  q[1] += w * n[0] * n[1];
+  q[2] += w * n[0] * n[2];
+  q[3] += w * n[1] * n[1];
+  q[4] += w * n[1] * n[2];
+  q[5] += w * n[2] * n[2];
+  q[6] += w * d * n[0];
+  q[7] += w * d * n[1];
+  q[8] += w * d * n[2];
+  q[9] += w * d * d;
+}
+
+/// The triangle whose attribute j has the field g[3j..3j+3), d[j], weighted by w.
+inline void AddField(double* q, int attributes, const double* g, const double* d, double w)
+{
+  q[10] += w;
+  double* G = q + 11;
   double* D = G + 3 * attributes;
   for (int j = 0; j < attributes; ++j)
   {
     const double* gj = g + 3 * j;
-    q.A00 += w * gj[0] * gj[0];
-    q.A01 += w * gj[0] * gj[1];
-    q.A02 += w * gj[0] * gj[2];
-    q.A11 += w * gj[1] * gj[1];
-    q.A12 += w * gj[1] * gj[2];
-    q.A22 += w * gj[2] * gj[2];
-    q.B0 += w * d[j] * gj[0];
-    q.B1 += w * d[j] * gj[1];
-    q.B2 += w * d[j] * gj[2];
-    q.C += w * d[j] * d[j];
+    q[0] += w * gj[0] * gj[0];
+    q[1] += w * gj[0] * gj[1];
+    q[2] += w * gj[0] * gj[2];
+    q[3] += w * gj[1] * gj[1];
+    q[4] += w * gj[1] * gj[2];
+    q[5] += w * gj[2] * gj[2];
+    q[6] += w * d[j] * gj[0];
+    q[7] += w * d[j] * gj[1];
+    q[8] += w * d[j] * gj[2];
+    q[9] += w * d[j] * d[j];
     G[3 * j] += w * gj[0];
     G[3 * j + 1] += w * gj[1];
     G[3 * j + 2] += w * gj[2];
@@ -92,30 +63,32 @@ inline void AddField(Quadric& q, double* a, int attributes, const double* g, con
   }
 }
 
-inline void Add(double* a, const double* b, int attributes)
+/// q += r over n doubles (Size(m), or a longer record holding a quadric).
+inline void Add(double* q, const double* r, std::size_t n)
 {
-  for (std::size_t i = 0, n = Stride(attributes); i < n; ++i)
+  for (std::size_t i = 0; i < n; ++i)
   {
-    a[i] += b[i];
+    q[i] += r[i];
   }
 }
 
-/// The attribute terms of the full quadric at position p with attribute values s; add the
-/// position Quadric's Evaluate(p) for the whole error.
-inline double Evaluate(const double* a, int attributes, const double p[3], const double* s)
+/// Q(p, s): the error at position p with attribute values s.
+inline double Evaluate(const double* q, int attributes, const double p[3], const double* s)
 {
-  const double* G = a + 1;
+  const double x = p[0], y = p[1], z = p[2];
+  double e = x * (q[0] * x + 2 * (q[1] * y + q[2] * z + q[6])) + y * (q[3] * y + 2 * (q[4] * z + q[7])) +
+    z * (q[5] * z + 2 * q[8]) + q[9];
+  const double* G = q + 11;
   const double* D = G + 3 * attributes;
-  double e = 0;
   for (int j = 0; j < attributes; ++j)
   {
     const double* gj = G + 3 * j;
-    e += s[j] * (a[0] * s[j] - 2 * (gj[0] * p[0] + gj[1] * p[1] + gj[2] * p[2] + D[j]));
+    e += s[j] * (q[10] * s[j] - 2 * (gj[0] * x + gj[1] * y + gj[2] * z + D[j]));
   }
   return e;
 }
 
-} // namespace AttributeQuadric
+} // namespace Quadric
 
 } // namespace atp
 

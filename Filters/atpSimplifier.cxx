@@ -132,6 +132,10 @@ private:
   /// Bit index of the edge between vertices a and b of triangle t.
   int EdgeBit(std::uint32_t t, std::uint32_t a, std::uint32_t b) const;
   const double* Position(std::uint32_t v) const { return &P[3 * std::size_t(v)]; }
+  double* Record(std::uint32_t v) { return &Records[RecordSize * v]; }
+  const double* Record(std::uint32_t v) const { return &Records[RecordSize * v]; }
+  /// The largest distance from an input vertex to the output surface (see SimplifyResult).
+  double Deviation();
   PatchMesh Extract(const std::vector<std::uint32_t>& triangles);
 
   const PatchMesh& Mesh;
@@ -154,10 +158,11 @@ private:
   bool HasNormals = false;
   std::vector<double> P;  // normalized positions
   std::vector<double> S;  // weighted attributes, Attributes per vertex
-  std::vector<Quadric> Q; // area-weighted plane + attribute-field quadric (collapse order)
-  std::vector<double> QA; // its attribute part
-  std::vector<Quadric> QErr; // unweighted plane quadric (the Error bound)
-  std::vector<double> Weight; // total weight of the planes in Q
+  /// Per vertex, one record: the area-weighted plane + attribute-field quadric that orders the
+  /// collapses (Quadric::Size(Attributes) doubles), then the total weight of its planes.
+  std::size_t RecordSize = 0;
+  std::vector<double> Records;
+  std::vector<std::uint32_t> Into; // per removed vertex: the vertex it collapsed onto
   std::vector<VertexKind> Kind;
   std::vector<Candidate> Best; // per vertex: its queued collapse
   std::vector<std::uint32_t> Version;
@@ -170,7 +175,6 @@ private:
   std::vector<std::uint32_t> Deferred;
   bool Relaxed = false;
   bool Heaped = false; ///< the first evaluations are heaped all at once, in linear time
-  double MaxError2 = 0;
   std::size_t Collapses = 0;
 
   // Scratch, reused by every collapse: stamps make clearing unnecessary.
@@ -249,6 +253,7 @@ Simplifier::Simplifier(const PatchMesh& mesh, int regionCount, const RegionFunct
   Kind.assign(VertexCount, VertexKind::Locked);
   Best.assign(VertexCount, Candidate());
   Version.assign(VertexCount, 0);
+  Into.assign(VertexCount, None);
   MarkU.assign(VertexCount, 0);
   CountU.assign(VertexCount, 0);
   MarkV.assign(VertexCount, 0);
@@ -435,12 +440,10 @@ void Simplifier::Classify(std::uint32_t u)
 
 void Simplifier::BuildQuadrics()
 {
-  const std::size_t stride = AttributeQuadric::Stride(Attributes);
-  Q.assign(VertexCount, Quadric());
-  QErr.assign(VertexCount, Quadric());
-  QA.assign(stride * VertexCount, 0.0);
-  Weight.assign(VertexCount, 0.0);
-  std::vector<double> triangleAttributes(stride);
+  const std::size_t size = Quadric::Size(Attributes);
+  RecordSize = size + 1;
+  Records.assign(RecordSize * VertexCount, 0.0);
+  std::vector<double> q(RecordSize);
   for (std::size_t t = 0; t < TriangleCount; ++t)
   {
     if (TriangleRemoved[t])
@@ -467,11 +470,9 @@ void Simplifier::BuildQuadrics()
 
     // Hoppe's linear attribute field over the triangle: g.p + d equals the attribute at the
     // corners, with g in the triangle's plane.
-    Quadric plane;
-    plane.AddPlane(n, d, 1);
-    Quadric q;
-    q.AddPlane(n, d, area);
-    std::fill(triangleAttributes.begin(), triangleAttributes.end(), 0.0);
+    std::fill(q.begin(), q.end(), 0.0);
+    Quadric::AddPlane(q.data(), n, d, area);
+    q[size] = area;
     if (Attributes > 0)
     {
       double c1[3], c2[3];
@@ -491,14 +492,11 @@ void Simplifier::BuildQuadrics()
         }
         offset[j] = s0[j] - Dot(g + 3 * j, p0);
       }
-      AttributeQuadric::AddField(q, triangleAttributes.data(), Attributes, g, offset, area);
+      Quadric::AddField(q.data(), Attributes, g, offset, area);
     }
     for (int k = 0; k < 3; ++k)
     {
-      Q[tri[k]].Add(q);
-      Weight[tri[k]] += area;
-      AttributeQuadric::Add(&QA[stride * tri[k]], triangleAttributes.data(), Attributes);
-      QErr[tri[k]].Add(plane);
+      Quadric::Add(Record(tri[k]), q.data(), RecordSize);
     }
 
     for (int k = 0; k < 3; ++k)
@@ -524,9 +522,8 @@ void Simplifier::BuildQuadrics()
       const double w = BoundaryPlaneWeight * Dot(edge, edge);
       for (std::uint32_t v : { a, b })
       {
-        Q[v].AddPlane(m, md, w);
-        Weight[v] += w;
-        QErr[v].AddPlane(m, md, 1);
+        Quadric::AddPlane(Record(v), m, md, w);
+        Record(v)[size] += w;
       }
     }
   }
@@ -669,9 +666,9 @@ Candidate Simplifier::Price(std::uint32_t u, std::uint32_t target, int regionA, 
 {
   const double* p = Position(target);
   Candidate candidate;
-  candidate.Cost = (Q[u].Evaluate(p) +
-    AttributeQuadric::Evaluate(&QA[AttributeQuadric::Stride(Attributes) * u], Attributes, p,
-      &S[std::size_t(Attributes) * target])) / std::max(Weight[u], 1e-300);
+  const double* record = Record(u);
+  candidate.Cost = Quadric::Evaluate(record, Attributes, p, &S[std::size_t(Attributes) * target]) /
+    std::max(record[RecordSize - 1], 1e-300);
   candidate.Target = target;
   candidate.Rank = 2 - int(OverQuota(regionA)) - int(OverQuota(regionB));
   candidate.Region = OverQuota(regionA) || !OverQuota(regionB) ? regionA : regionB;
@@ -920,12 +917,8 @@ void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
   ++Version[u];
   Best[u] = Candidate();
 
-  Q[v].Add(Q[u]);
-  QErr[v].Add(QErr[u]);
-  const std::size_t stride = AttributeQuadric::Stride(Attributes);
-  AttributeQuadric::Add(&QA[stride * v], &QA[stride * u], Attributes);
-  Weight[v] += Weight[u];
-  MaxError2 = std::max(MaxError2, QErr[v].Evaluate(Position(v)));
+  Into[u] = v;
+  Quadric::Add(Record(v), Record(u), RecordSize);
   ++Collapses;
 }
 
@@ -1045,7 +1038,7 @@ SimplifyResult Simplifier::Run()
   }
 
   SimplifyResult result;
-  result.Error = std::sqrt(std::max(0.0, MaxError2)) * Scale;
+  result.Error = Deviation();
   result.Collapses = Collapses;
   result.QuotasMet = Excess == 0;
   std::vector<std::vector<std::uint32_t>> byRegion(static_cast<std::size_t>(RegionCount));
@@ -1061,6 +1054,141 @@ SimplifyResult Simplifier::Run()
     result.Regions.push_back(Extract(byRegion[std::size_t(r)]));
   }
   return result;
+}
+
+/// Squared distance from p to the triangle (a, b, c): the closest point by its Voronoi region
+/// (Ericson, Real-Time Collision Detection, 5.1.5). inside: whether it is interior to the face.
+double DistanceToTriangle2(const double* p, const double* a, const double* b, const double* c, bool& inside)
+{
+  inside = false;
+  double ab[3], ac[3], ap[3], closest[3];
+  Sub(b, a, ab);
+  Sub(c, a, ac);
+  Sub(p, a, ap);
+  const auto at = [&](double s, double t) {
+    for (int i = 0; i < 3; ++i)
+    {
+      closest[i] = a[i] + s * ab[i] + t * ac[i];
+    }
+  };
+  const double d1 = Dot(ab, ap), d2 = Dot(ac, ap);
+  double bp[3], cp[3];
+  Sub(p, b, bp);
+  Sub(p, c, cp);
+  const double d3 = Dot(ab, bp), d4 = Dot(ac, bp), d5 = Dot(ab, cp), d6 = Dot(ac, cp);
+  const double va = d3 * d6 - d5 * d4, vb = d5 * d2 - d1 * d6, vc = d1 * d4 - d3 * d2;
+  if (d1 <= 0 && d2 <= 0)
+  {
+    at(0, 0);
+  }
+  else if (d3 >= 0 && d4 <= d3)
+  {
+    at(1, 0);
+  }
+  else if (d6 >= 0 && d5 <= d6)
+  {
+    at(0, 1);
+  }
+  else if (vc <= 0 && d1 >= 0 && d3 <= 0)
+  {
+    at(d1 / (d1 - d3), 0);
+  }
+  else if (vb <= 0 && d2 >= 0 && d6 <= 0)
+  {
+    at(0, d2 / (d2 - d6));
+  }
+  else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
+  {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    at(1 - w, w);
+  }
+  else
+  {
+    const double denominator = va + vb + vc;
+    at(vb / denominator, vc / denominator);
+    inside = true;
+  }
+  double e[3];
+  Sub(p, closest, e);
+  return Dot(e, e);
+}
+
+// Each removed vertex is measured against the output triangles around the vertex it ended in,
+// then, unless its closest point is interior to a face, walks to a corner of its closest triangle
+// while that corner's fan comes closer. Any set of output triangles gives an upper bound of the
+// distance to the whole output surface; the walk makes it (nearly always) the exact distance.
+double Simplifier::Deviation()
+{
+  const auto at = [&](std::uint32_t v, double* p) {
+    for (int a = 0; a < 3; ++a)
+    {
+      p[a] = double(Mesh.Positions[3 * std::size_t(v) + std::size_t(a)]);
+    }
+  };
+  double p[3];
+  // The squared distance from p to the fan of v, its closest triangle and whether the closest
+  // point is interior to it.
+  bool inside = false;
+  const auto fanDistance2 = [&](std::uint32_t v, std::uint32_t& closest) {
+    GatherFan(v, Fan);
+    double nearest2 = 1e300;
+    for (std::uint32_t c : Fan)
+    {
+      const std::uint32_t t = c / 3;
+      double corners[3][3];
+      for (int k = 0; k < 3; ++k)
+      {
+        at(Indices[3 * t + std::uint32_t(k)], corners[k]);
+      }
+      bool interior = false;
+      const double d2 = DistanceToTriangle2(p, corners[0], corners[1], corners[2], interior);
+      if (d2 < nearest2)
+      {
+        nearest2 = d2;
+        closest = t;
+        inside = interior;
+      }
+    }
+    return nearest2;
+  };
+  double max2 = 0;
+  for (std::uint32_t u = 0; u < VertexCount; ++u)
+  {
+    if (Kind[u] != VertexKind::Removed)
+    {
+      continue;
+    }
+    std::uint32_t v = Into[u];
+    while (Kind[v] == VertexKind::Removed)
+    {
+      v = Into[v];
+    }
+    Into[u] = v; // later vertices that ended here find it at once
+    at(u, p);
+    std::uint32_t closest = None;
+    double nearest2 = fanDistance2(v, closest);
+    for (bool moved = closest != None; moved && nearest2 > 0 && !inside;)
+    {
+      moved = false;
+      const std::uint32_t* tri = &Indices[3 * std::size_t(closest)];
+      const std::uint32_t corners[3] = { tri[0], tri[1], tri[2] };
+      for (std::uint32_t x : corners)
+      {
+        std::uint32_t t = None;
+        const double d2 = x == v ? 1e300 : fanDistance2(x, t);
+        if (d2 < nearest2)
+        {
+          nearest2 = d2;
+          closest = t;
+          v = x;
+          moved = true;
+          break;
+        }
+      }
+    }
+    max2 = std::max(max2, nearest2);
+  }
+  return std::sqrt(max2);
 }
 
 PatchMesh Simplifier::Extract(const std::vector<std::uint32_t>& triangles)

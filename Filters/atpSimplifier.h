@@ -34,10 +34,12 @@ struct SimplifyResult
   /// One compact mesh per region: its triangles in input order, the vertices they use in order
   /// of first use, and the BoundaryEdges bits of its triangles.
   std::vector<PatchMesh> Regions;
-  /// Conservative object-space error of the result against the input of this call: the largest,
-  /// over all collapses, of the square root of the unweighted position quadric of the surviving
-  /// vertex at its position. That bounds the distance from the vertex to every input triangle
-  /// plane (and original-boundary edge plane) it has absorbed. 0 when nothing collapsed.
+  /// Object-space error of the result against the input of this call: the largest distance from
+  /// an input vertex to the output surface (an upper bound of it: each removed vertex is measured
+  /// exactly, in double, against the output triangles around the vertex it collapsed into).
+  /// Output vertices are input vertices, so this is the one-sided Hausdorff distance from the
+  /// input's vertices to the output; callers add the children's errors on top. 0 when nothing
+  /// collapsed.
   double Error = 0;
   std::size_t Collapses = 0;
   /// False when locked or topologically constrained geometry keeps a region over its quota.

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -475,6 +476,81 @@ TEST(Simplifier, ErrorGrowsAsQuotaFalls)
     previous = result.Error;
   }
   EXPECT_LT(previous, 0.1);
+}
+
+/// The distance from p to the triangle (a, b, c): to its plane when p projects inside, else to
+/// its nearest edge (independent of the simplifier's closest-point code).
+double PointTriangleDistance(const double* p, const double* a, const double* b, const double* c)
+{
+  const auto sub = [](const double* x, const double* y, double* o) {
+    for (int i = 0; i < 3; ++i)
+    {
+      o[i] = x[i] - y[i];
+    }
+  };
+  const auto dot = [](const double* x, const double* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
+  const auto segment = [&](const double* x, const double* y) {
+    double d[3], e[3];
+    sub(y, x, d);
+    sub(p, x, e);
+    const double t = std::clamp(dot(d, e) / std::max(dot(d, d), 1e-300), 0.0, 1.0);
+    for (int i = 0; i < 3; ++i)
+    {
+      e[i] -= t * d[i];
+    }
+    return std::sqrt(dot(e, e));
+  };
+  double ab[3], ac[3], ap[3];
+  sub(b, a, ab);
+  sub(c, a, ac);
+  sub(p, a, ap);
+  const double n[3] = { ab[1] * ac[2] - ab[2] * ac[1], ab[2] * ac[0] - ab[0] * ac[2], ab[0] * ac[1] - ab[1] * ac[0] };
+  const double corners[3][3] = { { a[0], a[1], a[2] }, { b[0], b[1], b[2] }, { c[0], c[1], c[2] } };
+  bool inside = dot(n, n) > 0;
+  for (int k = 0; k < 3 && inside; ++k)
+  {
+    double e[3], q[3], m[3];
+    sub(corners[(k + 1) % 3], corners[k], e);
+    sub(p, corners[k], q);
+    m[0] = e[1] * q[2] - e[2] * q[1];
+    m[1] = e[2] * q[0] - e[0] * q[2];
+    m[2] = e[0] * q[1] - e[1] * q[0];
+    inside = dot(m, n) >= 0;
+  }
+  if (inside)
+  {
+    return std::abs(dot(ap, n)) / std::sqrt(dot(n, n));
+  }
+  return std::min({ segment(a, b), segment(b, c), segment(c, a) });
+}
+
+TEST(Simplifier, ErrorIsTheLargestVertexDistanceToTheOutput)
+{
+  const PatchMesh mesh = BumpyTorus(60, 30);
+  const SimplifyResult result = Simplify(mesh, 1, OneRegion(), { 600 });
+  const PatchMesh out = Joined(result);
+  double largest = 0;
+  for (std::size_t v = 0; v < mesh.VertexCount(); ++v)
+  {
+    const double p[3] = { mesh.Positions[3 * v], mesh.Positions[3 * v + 1], mesh.Positions[3 * v + 2] };
+    double nearest = 1e300;
+    for (std::size_t t = 0; t < out.TriangleCount(); ++t)
+    {
+      double c[3][3];
+      for (int k = 0; k < 3; ++k)
+      {
+        for (int i = 0; i < 3; ++i)
+        {
+          c[k][i] = out.Positions[3 * std::size_t(out.Indices[3 * t + std::size_t(k)]) + std::size_t(i)];
+        }
+      }
+      nearest = std::min(nearest, PointTriangleDistance(p, c[0], c[1], c[2]));
+    }
+    largest = std::max(largest, nearest);
+  }
+  EXPECT_GT(largest, 0);
+  EXPECT_GE(result.Error, largest * (1 - 1e-9)) << "an upper bound";
+  EXPECT_LE(result.Error, largest * 1.5) << "and a tight one";
 }
 
 TEST(Simplifier, PlanarGridHasNoError)
