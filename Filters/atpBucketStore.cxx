@@ -7,12 +7,19 @@
 namespace atp
 {
 
-BucketStore::BucketStore(const std::string& scratchDirectory, std::size_t memoryBudgetBytes)
+BucketStore::BucketStore(
+  const std::string& scratchDirectory, std::size_t memoryBudgetBytes, std::size_t recordBytes)
   : Disk(scratchDirectory)
+  , RecordBytes(recordBytes)
+  , PageBytes(PageRecords * recordBytes)
 {
+  if (recordBytes != sizeof(SoupTriangle) && recordBytes != SoupBytesWithoutColors)
+  {
+    throw std::invalid_argument("BucketStore: unsupported record size");
+  }
   // At least a handful of frames so that a split (one bucket read, two appended) always fits.
   const std::size_t frames = std::max<std::size_t>(8, memoryBudgetBytes / PageBytes);
-  Pool.reset(new SoupTriangle[frames * PageRecords]);
+  Pool.reset(new unsigned char[frames * PageBytes]);
   States.assign(frames, FrameState::Free);
   FramePage.assign(frames, -1);
   FrameDirty.assign(frames, 0);
@@ -179,7 +186,7 @@ void BucketStore::Append(BucketIndex bucketIndex, const SoupTriangle& triangle)
   {
     frame = Resident(bucket.Pages.back(), true);
   }
-  FrameData(frame)[slot] = triangle;
+  std::memcpy(FrameData(frame) + slot * RecordBytes, &triangle, RecordBytes);
   FrameDirty[frame] = 1;
   FrameReferenced[frame] = 1;
   ++bucket.Count;
@@ -201,15 +208,29 @@ void BucketStore::Read(BucketIndex bucketIndex, std::vector<SoupTriangle>& out) 
     if (PageFrame[page] != NotResident)
     {
       // Also for a frame being written: the writer only reads it too.
-      std::memcpy(&out[first], FrameData(std::size_t(PageFrame[page])), n * sizeof(SoupTriangle));
+      Unpack(FrameData(std::size_t(PageFrame[page])), n, &out[first]);
     }
     else
     {
-      Disk.ReadAt(std::uint64_t(page) * PageBytes, &out[first], n * sizeof(SoupTriangle));
-      Counters.BytesRead += n * sizeof(SoupTriangle);
+      // Packed records are never longer than SoupTriangles: read them into place, then spread.
+      unsigned char* packed = reinterpret_cast<unsigned char*>(&out[first]);
+      Disk.ReadAt(std::uint64_t(page) * PageBytes, packed, n * RecordBytes);
+      Counters.BytesRead += n * RecordBytes;
+      Unpack(packed, n, &out[first]);
     }
     first += n;
     left -= n;
+  }
+}
+
+void BucketStore::Unpack(const unsigned char* packed, std::size_t count, SoupTriangle* out) const
+{
+  // Backwards: a record's destination never overlaps a packed record not yet moved.
+  for (std::size_t i = count; i-- > 0;)
+  {
+    unsigned char* to = reinterpret_cast<unsigned char*>(&out[i]);
+    std::memmove(to, packed + i * RecordBytes, RecordBytes);
+    std::memset(to + RecordBytes, 255, sizeof(SoupTriangle) - RecordBytes);
   }
 }
 

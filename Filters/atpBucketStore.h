@@ -29,11 +29,14 @@ class VTKATPFILTERS_EXPORT BucketStore
 {
 public:
   using BucketIndex = std::uint32_t;
-  // 256 records = 16 KiB = 4 file-system blocks: writes never touch a block partially, and a
-  // bucket's last, partly filled page wastes little disk (leaves are many).
+  // 256 records = 13 to 16 KiB: large sequential writes, and a bucket's last, partly filled
+  // page wastes little disk (leaves are many).
   static constexpr std::size_t PageRecords = 256;
 
-  BucketStore(const std::string& scratchDirectory, std::size_t memoryBudgetBytes);
+  /// `recordBytes`: sizeof(SoupTriangle), or SoupBytesWithoutColors for inputs without colors
+  /// (a fifth less disk and I/O; records read back get opaque white).
+  BucketStore(const std::string& scratchDirectory, std::size_t memoryBudgetBytes,
+    std::size_t recordBytes = sizeof(SoupTriangle));
   /// Waits for the background writes (their errors are lost: the store is going away).
   ~BucketStore();
 
@@ -54,7 +57,6 @@ public:
 private:
   using PageIndex = std::uint32_t;
   static constexpr std::int32_t NotResident = -1;
-  static constexpr std::size_t PageBytes = PageRecords * sizeof(SoupTriangle);
 
   struct Bucket
   {
@@ -83,12 +85,16 @@ private:
   void StartEvictions();
   /// Waits for the batch in flight, if any, and frees its frames.
   void FinishWrites();
-  SoupTriangle* FrameData(std::size_t frame) const { return &Pool[frame * PageRecords]; }
+  unsigned char* FrameData(std::size_t frame) const { return &Pool[frame * PageBytes]; }
+  /// Copies `count` packed records from `packed` to `out`; they may overlap at their starts.
+  void Unpack(const unsigned char* packed, std::size_t count, SoupTriangle* out) const;
 
   ScratchFile Disk;
   std::vector<Bucket> Buckets;
   // Default-initialized: pages of the pool cost memory only once they are used.
-  std::unique_ptr<SoupTriangle[]> Pool;
+  const std::size_t RecordBytes;
+  const std::size_t PageBytes;
+  std::unique_ptr<unsigned char[]> Pool;
   // Per frame: its state, the page it holds (or none), whether it changed since loaded, and
   // the clock's reference bit.
   std::vector<FrameState> States;

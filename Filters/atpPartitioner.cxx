@@ -8,7 +8,8 @@ namespace atp
 Partitioner::Partitioner(const Box& bounds, const PartitionOptions& options)
   : Settings(options)
   , Lattice(bounds.Min.data(), bounds.Max.data())
-  , Buckets(options.ScratchDirectory, options.BucketMemoryBytes)
+  , Buckets(options.ScratchDirectory, options.BucketMemoryBytes,
+      options.Colors ? sizeof(SoupTriangle) : SoupBytesWithoutColors)
 {
   Settings.LeafCapacity = std::max<std::uint32_t>(1, Settings.LeafCapacity);
 }

@@ -113,6 +113,7 @@ int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, v
     options.LeafCapacity = std::uint32_t(this->LeafCapacity);
     options.BucketMemoryBytes = std::size_t(this->BucketMemoryMiB) << 20;
     options.ScratchDirectory = scratch;
+    options.Colors = source->HasColors();
 
     this->ExpectedTriangles = source->ExpectedTriangles();
     const double expected = double(this->ExpectedTriangles);

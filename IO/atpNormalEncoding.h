@@ -16,6 +16,14 @@ inline float SignNotZero(float v)
 {
   return v < 0 ? -1.0f : 1.0f;
 }
+
+/// Rounds [-1, 1] to the nearest of -32767..32767, half away from zero, without a libm call.
+inline std::int16_t Snorm16(float v)
+{
+  v = v < -1.0f ? -1.0f : (v > 1.0f ? 1.0f : v);
+  const float scaled = v * 32767.0f;
+  return std::int16_t(scaled < 0 ? scaled - 0.5f : scaled + 0.5f);
+}
 } // namespace detail
 
 /// A zero vector encodes as +z (callers avoid it; the result is still a valid unit normal).
@@ -32,8 +40,8 @@ inline void EncodeNormal(const float n[3], std::int16_t out[2])
     x = fx;
     y = fy;
   }
-  out[0] = std::int16_t(std::lround(std::fmax(-1.0f, std::fmin(1.0f, x)) * 32767.0f));
-  out[1] = std::int16_t(std::lround(std::fmax(-1.0f, std::fmin(1.0f, y)) * 32767.0f));
+  out[0] = detail::Snorm16(x);
+  out[1] = detail::Snorm16(y);
 }
 
 inline void DecodeNormal(const std::int16_t in[2], float n[3])

@@ -63,18 +63,26 @@ Box BoxOf(const std::vector<SoupTriangle>& soup)
 }
 } // namespace
 
-TEST(BucketStore, KeepsEveryTriangleThroughEvictionAndReuse)
+/// Appends, evicts, recycles and reads back records of `recordBytes` (full, or packed without
+/// colors, which come back opaque white).
+void CheckEvictionAndReuse(std::size_t recordBytes)
 {
   // Eight frames for hundreds of buckets: almost every append evicts a page to disk.
-  BucketStore store("", 1);
+  BucketStore store("", 1, recordBytes);
   ASSERT_EQ(store.PoolPages(), 8u);
   std::map<std::uint32_t, std::vector<SoupTriangle>> reference;
   std::mt19937 rng(7);
   for (int i = 0; i < 60000; ++i)
   {
     const std::uint32_t bucket = rng() % 300;
-    const SoupTriangle t = MakeTriangle(float(i), float(bucket), 0, 1, std::uint8_t(i & 7));
+    SoupTriangle t = MakeTriangle(float(i), float(bucket), 0, 1, std::uint8_t(i & 7));
+    t.Normals[1][0] = std::int16_t(i);
+    std::memset(t.Colors, i & 0xff, sizeof(t.Colors));
     store.Append(bucket, t);
+    if (recordBytes < sizeof(SoupTriangle))
+    {
+      std::memset(t.Colors, 255, sizeof(t.Colors));
+    }
     reference[bucket].push_back(t);
     if (i % 5000 == 4999)
     {
@@ -93,15 +101,27 @@ TEST(BucketStore, KeepsEveryTriangleThroughEvictionAndReuse)
     ASSERT_EQ(store.Count(bucket), expected.size());
     for (std::size_t i = 0; i < got.size(); ++i)
     {
-      ASSERT_TRUE(SameTriangle(got[i], expected[i])) << "bucket " << bucket << " record " << i;
+      ASSERT_EQ(std::memcmp(&got[i], &expected[i], sizeof(SoupTriangle)), 0)
+        << "bucket " << bucket << " record " << i;
     }
     live += expected.size();
   }
   EXPECT_GT(store.Stats().BytesWritten, 0u);
   EXPECT_GT(store.Stats().BytesRead, 0u);
   // Recycled pages keep the scratch file near the live data (one partial page per bucket).
-  const std::uint64_t pageBytes = BucketStore::PageRecords * sizeof(SoupTriangle);
-  EXPECT_LE(store.Stats().PeakScratchBytes, live * sizeof(SoupTriangle) + 2 * 300 * pageBytes);
+  const std::uint64_t pageBytes = BucketStore::PageRecords * recordBytes;
+  EXPECT_LE(store.Stats().PeakScratchBytes, live * recordBytes + 2 * 300 * pageBytes);
+}
+
+TEST(BucketStore, KeepsEveryTriangleThroughEvictionAndReuse)
+{
+  CheckEvictionAndReuse(sizeof(SoupTriangle));
+}
+
+TEST(BucketStore, PackedRecordsWithoutColorsReadBackWhite)
+{
+  CheckEvictionAndReuse(SoupBytesWithoutColors);
+  EXPECT_THROW(BucketStore("", 1, 40), std::invalid_argument);
 }
 
 TEST(Partitioner, RespectsCapacityLosesNothingAndConforms)
