@@ -5,19 +5,15 @@
 #include "atpModelEdit.h"
 #include "atpModelFile.h"
 #include "atpPatchMesh.h"
+#include "atpPatchPolyData.h"
 #include "atpProgressReport.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
-#include "vtkCellArray.h"
-#include "vtkFloatArray.h"
-#include "vtkIdTypeArray.h"
 #include "vtkImageData.h"
 #include "vtkImageDifference.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
-#include "vtkPointData.h"
-#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
@@ -131,32 +127,6 @@ std::vector<View> RandomViews(int count, std::uint64_t seed, const ViewPoint& ba
   return views;
 }
 
-vtkSmartPointer<vtkPolyData> ToPolyData(const PatchMesh& mesh)
-{
-  vtkNew<vtkFloatArray> positions;
-  positions->SetNumberOfComponents(3);
-  positions->SetNumberOfTuples(vtkIdType(mesh.VertexCount()));
-  std::copy(mesh.Positions.begin(), mesh.Positions.end(), positions->GetPointer(0));
-  vtkNew<vtkFloatArray> normals;
-  normals->SetName("Normals");
-  normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(vtkIdType(mesh.VertexCount()));
-  std::copy(mesh.Normals.begin(), mesh.Normals.end(), normals->GetPointer(0));
-  vtkNew<vtkIdTypeArray> connectivity;
-  connectivity->SetNumberOfValues(vtkIdType(mesh.Indices.size()));
-  std::copy(mesh.Indices.begin(), mesh.Indices.end(), connectivity->GetPointer(0));
-
-  vtkNew<vtkPoints> points;
-  points->SetData(positions);
-  vtkNew<vtkCellArray> triangles;
-  triangles->SetData(3, connectivity);
-  auto polyData = vtkSmartPointer<vtkPolyData>::New();
-  polyData->SetPoints(points);
-  polyData->SetPolys(triangles);
-  polyData->GetPointData()->SetNormals(normals);
-  return polyData;
-}
-
 /// An offscreen window that draws a mesh white on black under the renderer's default headlight
 /// and reads the picture back.
 class Snapshot
@@ -223,6 +193,7 @@ public:
   Calibrator(const ModelFile& model, std::vector<View> views, int width, int height,
     int intensity, double threshold)
     : Model(model)
+    , Selector(model, std::make_shared<const CutIndex>(model))
     , Views(std::move(views))
     , Shot(width, height)
     , Threshold(threshold)
@@ -232,7 +203,7 @@ public:
     // (quantized, with the builder's normals), so that only the level of detail differs.
     const PatchMesh full = ExtractCut(model, SelectLevel(model, int(model.Header().Depth)));
     FullTriangles = full.TriangleCount();
-    const vtkSmartPointer<vtkPolyData> polyData = ToPolyData(full);
+    const vtkSmartPointer<vtkPolyData> polyData = PatchMeshToPolyData(full);
     for (const View& v : Views)
     {
       References.push_back(Shot.Take(polyData, v));
@@ -246,9 +217,10 @@ public:
 
   Outcome Evaluate(std::size_t v, double scale)
   {
-    const PatchMesh cut = ExtractCut(Model, SelectCut(Model, Views[v].Point, scale));
+    Selector.Select(Views[v].Point, scale, ResidentFunction(), Cut);
+    const PatchMesh cut = ExtractCut(Model, Cut.Drawn);
     Difference->SetInputData(References[v]);
-    Difference->SetImageData(Shot.Take(ToPolyData(cut), Views[v]));
+    Difference->SetImageData(Shot.Take(PatchMeshToPolyData(cut), Views[v]));
     Difference->Update();
     return { cut.TriangleCount(), Difference->GetThresholdedError() };
   }
@@ -277,6 +249,8 @@ public:
 
 private:
   const ModelFile& Model;
+  CutSelector Selector;
+  CutResult Cut;
   std::vector<View> Views;
   Snapshot Shot;
   double Threshold;

@@ -37,17 +37,6 @@ std::map<int, LevelFigures> Levels(const ModelFile& model)
   }
   return levels;
 }
-
-QuantizationGrid GridOf(const ModelHeader& h)
-{
-  QuantizationGrid grid;
-  for (int a = 0; a < 3; ++a)
-  {
-    grid.Origin[a] = h.QuantizationOrigin[a];
-  }
-  grid.Step = h.QuantizationStep;
-  return grid;
-}
 } // namespace
 
 int InfoCommand(const std::vector<std::string>& arguments)
@@ -139,7 +128,7 @@ int VerifyCommand(const std::vector<std::string>& arguments)
   std::vector<std::string> problems = model.Verify();
   if (problems.empty())
   {
-    const QuantizationGrid grid = GridOf(model.Header());
+    const QuantizationGrid grid = model.PatchGrid();
     PatchMesh patch;
     for (std::size_t i = 0; i < model.NodeCount(); ++i)
     {

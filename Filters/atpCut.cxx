@@ -1,10 +1,9 @@
 #include "atpCut.h"
 
 #include "atpMergePatches.h"
-#include "atpPatchCodec.h"
-#include "atpQuantizationGrid.h"
 #include "atpTetra.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -13,6 +12,10 @@ namespace atp
 
 double ProjectedError(const ModelNode& node, const ViewPoint& view, double errorScale)
 {
+  if (view.Parallel)
+  {
+    return errorScale * node.SaturatedError * view.ViewportHeight / (2 * view.ParallelScale);
+  }
   const float* s = node.SaturatedSphere;
   const double distance = std::sqrt((s[0] - view.Eye[0]) * (s[0] - view.Eye[0]) +
                             (s[1] - view.Eye[1]) * (s[1] - view.Eye[1]) +
@@ -26,13 +29,200 @@ double ProjectedError(const ModelNode& node, const ViewPoint& view, double error
   return errorScale * node.SaturatedError * pixelsPerUnitAtDistanceOne / distance;
 }
 
-namespace
+bool OutsideFrustum(const float sphere[4], const ViewPoint& view)
 {
-template<typename Refine>
-std::vector<std::uint32_t> TopDown(const ModelFile& model, const Refine& refine)
+  for (int p = 0; p < view.PlaneCount; ++p)
+  {
+    const double* plane = view.Planes[p];
+    if (plane[0] * sphere[0] + plane[1] * sphere[1] + plane[2] * sphere[2] + plane[3] < -sphere[3])
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool FacesAway(const NormalCone& cone, const float sphere[4], const ViewPoint& view)
+{
+  if (cone.IsEmpty())
+  {
+    return true;
+  }
+  if (cone.Cos <= 0)
+  {
+    return false; // a half angle of 90 degrees or more always holds a normal facing the eye
+  }
+  // Every normal n of the cone and every direction v from the eye to a point of the sphere
+  // must satisfy n.v > 0: the angle between the axis and v's central direction, plus the
+  // cone's half angle, plus the sphere's apparent half angle, must stay below 90 degrees.
+  double toCenter[3];
+  double spread = 0;
+  if (view.Parallel)
+  {
+    std::copy(view.Direction, view.Direction + 3, toCenter);
+  }
+  else
+  {
+    double length = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      toCenter[a] = sphere[a] - view.Eye[a];
+      length += toCenter[a] * toCenter[a];
+    }
+    length = std::sqrt(length);
+    if (length <= sphere[3])
+    {
+      return false; // the eye is inside the sphere
+    }
+    for (double& c : toCenter)
+    {
+      c /= length;
+    }
+    spread = std::asin(sphere[3] / length);
+  }
+  const double cosAxis = std::max(-1.0, std::min(1.0, cone.Axis[0] * toCenter[0] +
+                                                        cone.Axis[1] * toCenter[1] + cone.Axis[2] * toCenter[2]));
+  return std::acos(cosAxis) + std::acos(double(cone.Cos)) + spread < 0.5 * M_PI - 1e-6;
+}
+
+CutSelector::CutSelector(const ModelFile& model, std::shared_ptr<const CutIndex> index)
+  : Model(model)
+  , IndexRef(std::move(index))
+  , DecisionStamp(IndexRef->DiamondCount(), 0)
+  , Decision(IndexRef->DiamondCount(), 0)
+  , MissingStamp(Model.NodeCount(), 0)
+{
+}
+
+bool CutSelector::Refines(std::uint32_t diamond)
+{
+  if (DecisionStamp[diamond] == Stamp)
+  {
+    return Decision[diamond] != 0;
+  }
+  const CutIndex& index = *IndexRef;
+  const ModelNode& first = Model.Node(*index.MembersBegin(diamond));
+  // Saturated errors and spheres are equal over the diamond: one member decides for all.
+  bool refines = first.Children[0] >= 0 && ProjectedError(first, *View, Scale) > View->TolerancePixels;
+  if (refines && *Resident)
+  {
+    for (const std::uint32_t* m = index.MembersBegin(diamond); m != index.MembersEnd(diamond); ++m)
+    {
+      for (const std::int32_t child : Model.Node(*m).Children)
+      {
+        refines = (*Resident)(std::uint32_t(child)) && refines;
+      }
+    }
+    // Every diamond above must refine too, or some member of this one is not in the cut.
+    for (const std::uint32_t* p = index.ParentsBegin(diamond); refines && p != index.ParentsEnd(diamond); ++p)
+    {
+      refines = Refines(*p);
+    }
+  }
+  DecisionStamp[diamond] = Stamp;
+  Decision[diamond] = refines ? 1 : 0;
+  return refines;
+}
+
+void CutSelector::Select(const ViewPoint& view, double errorScale, const ResidentFunction& resident,
+  CutResult& out)
+{
+  out.Drawn.clear();
+  out.Missing.clear();
+  out.Visited = 0;
+  View = &view;
+  Scale = errorScale;
+  Resident = &resident;
+  if (++Stamp == 0)
+  {
+    std::fill(DecisionStamp.begin(), DecisionStamp.end(), 0);
+    std::fill(MissingStamp.begin(), MissingStamp.end(), 0);
+    Stamp = 1;
+  }
+  const CutIndex& index = *IndexRef;
+  auto needs = [&](std::uint32_t node) {
+    if (MissingStamp[node] != Stamp && resident && !resident(node))
+    {
+      MissingStamp[node] = Stamp;
+      out.Missing.push_back(node);
+    }
+  };
+
+  Stack.clear();
+  for (std::uint32_t root = RootCount; root-- > 0;)
+  {
+    Stack.push_back(root);
+  }
+  while (!Stack.empty())
+  {
+    const std::uint32_t n = Stack.back();
+    Stack.pop_back();
+    ++out.Visited;
+    const ModelNode& node = Model.Node(n);
+    if (OutsideFrustum(node.SaturatedSphere, view) ||
+      (view.BackfaceCulling && FacesAway(index.SaturatedCone(n), node.SaturatedSphere, view)))
+    {
+      continue; // nothing of this branch can show
+    }
+    const std::uint32_t diamond = index.DiamondOf(n);
+    if (Refines(diamond))
+    {
+      Stack.push_back(std::uint32_t(node.Children[1]));
+      Stack.push_back(std::uint32_t(node.Children[0]));
+      continue;
+    }
+    if (node.TriangleCount == 0 || OutsideFrustum(node.Sphere, view))
+    {
+      continue;
+    }
+    if (view.BackfaceCulling)
+    {
+      NormalCone own;
+      std::copy(node.ConeAxis, node.ConeAxis + 3, own.Axis);
+      own.Cos = node.ConeCos;
+      if (FacesAway(own, node.Sphere, view))
+      {
+        continue;
+      }
+    }
+    if (resident && !resident(n))
+    {
+      needs(n); // only roots get here: below them, nodes are reached through ready diamonds
+      continue;
+    }
+    out.Drawn.push_back(n);
+    // Wanted finer but waiting: ask for what the diamond's refinement lacks.
+    if (node.Children[0] >= 0 && resident && ProjectedError(node, view, errorScale) > view.TolerancePixels)
+    {
+      for (const std::uint32_t* m = index.MembersBegin(diamond); m != index.MembersEnd(diamond); ++m)
+      {
+        for (const std::int32_t child : Model.Node(*m).Children)
+        {
+          needs(std::uint32_t(child));
+        }
+      }
+    }
+  }
+}
+
+std::vector<std::uint32_t> SelectCut(const ModelFile& model, const ViewPoint& view)
+{
+  return SelectCut(model, view, model.Header().ErrorScale);
+}
+
+std::vector<std::uint32_t> SelectCut(
+  const ModelFile& model, const ViewPoint& view, double errorScale)
+{
+  CutSelector selector(model, std::make_shared<const CutIndex>(model));
+  CutResult result;
+  selector.Select(view, errorScale, ResidentFunction(), result);
+  return std::move(result.Drawn);
+}
+
+std::vector<std::uint32_t> SelectLevel(const ModelFile& model, int level)
 {
   std::vector<std::uint32_t> cut, stack;
-  for (std::uint32_t root = 6; root-- > 0;)
+  for (std::uint32_t root = RootCount; root-- > 0;)
   {
     stack.push_back(root);
   }
@@ -41,7 +231,7 @@ std::vector<std::uint32_t> TopDown(const ModelFile& model, const Refine& refine)
     const std::uint32_t n = stack.back();
     stack.pop_back();
     const ModelNode& node = model.Node(n);
-    if (node.Children[0] >= 0 && refine(node))
+    if (node.Children[0] >= 0 && TetId{ node.Tet }.Level() < level)
     {
       stack.push_back(std::uint32_t(node.Children[1]));
       stack.push_back(std::uint32_t(node.Children[0]));
@@ -53,47 +243,19 @@ std::vector<std::uint32_t> TopDown(const ModelFile& model, const Refine& refine)
   }
   return cut;
 }
-} // namespace
 
-std::vector<std::uint32_t> SelectCut(const ModelFile& model, const ViewPoint& view)
+PatchMesh ExtractCut(const ModelFile& model, const std::vector<std::uint32_t>& nodes,
+  std::vector<std::uint32_t>* trianglePatch)
 {
-  return SelectCut(model, view, model.Header().ErrorScale);
-}
-
-std::vector<std::uint32_t> SelectCut(
-  const ModelFile& model, const ViewPoint& view, double errorScale)
-{
-  return TopDown(model, [&](const ModelNode& node) {
-    return ProjectedError(node, view, errorScale) > view.TolerancePixels;
-  });
-}
-
-std::vector<std::uint32_t> SelectLevel(const ModelFile& model, int level)
-{
-  return TopDown(model, [level](const ModelNode& node) {
-    return TetId{ node.Tet }.Level() < level;
-  });
-}
-
-PatchMesh ExtractCut(const ModelFile& model, const std::vector<std::uint32_t>& nodes)
-{
-  const ModelHeader& h = model.Header();
-  QuantizationGrid grid;
-  for (int a = 0; a < 3; ++a)
-  {
-    grid.Origin[a] = h.QuantizationOrigin[a];
-  }
-  grid.Step = h.QuantizationStep;
   std::vector<PatchMesh> patches(nodes.size());
   std::vector<const PatchMesh*> parts;
   for (std::size_t i = 0; i < nodes.size(); ++i)
   {
-    model.CheckPatch(nodes[i]);
-    DecodePatch(model.PatchData(nodes[i]), model.Node(nodes[i]).PatchBytes, grid, patches[i]);
+    model.DecodePatch(nodes[i], patches[i]);
     patches[i].BoundaryEdges.assign(patches[i].TriangleCount(), 0);
     parts.push_back(&patches[i]);
   }
-  return MergePatches(parts);
+  return MergePatches(parts, trianglePatch);
 }
 
 } // namespace atp

@@ -18,7 +18,8 @@ std::uint64_t HashPosition(const std::uint32_t bits[3])
 
 } // namespace
 
-PatchMesh MergePatches(const std::vector<const PatchMesh*>& patches)
+PatchMesh MergePatches(
+  const std::vector<const PatchMesh*>& patches, std::vector<std::uint32_t>* trianglePatch)
 {
   std::size_t vertexCount = 0;
   std::size_t triangleCount = 0;
@@ -48,8 +49,14 @@ PatchMesh MergePatches(const std::vector<const PatchMesh*>& patches)
   }
   std::vector<std::uint32_t> slots(capacity, 0);
   std::vector<std::uint32_t> remap;
-  for (const PatchMesh* p : patches)
+  if (trianglePatch)
   {
+    trianglePatch->clear();
+    trianglePatch->reserve(triangleCount);
+  }
+  for (std::uint32_t source = 0; source < patches.size(); ++source)
+  {
+    const PatchMesh* p = patches[source];
     const std::size_t n = p->VertexCount();
     remap.resize(n);
     for (std::size_t v = 0; v < n; ++v)
@@ -94,6 +101,10 @@ PatchMesh MergePatches(const std::vector<const PatchMesh*>& patches)
       }
       out.Indices.insert(out.Indices.end(), { a, b, c });
       out.BoundaryEdges.push_back(t < p->BoundaryEdges.size() ? p->BoundaryEdges[t] : 0);
+      if (trianglePatch)
+      {
+        trianglePatch->push_back(source);
+      }
     }
   }
   return out;

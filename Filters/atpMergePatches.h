@@ -5,6 +5,7 @@
 #include "atpPatchMesh.h"
 #include "vtkATPFiltersModule.h"
 
+#include <cstdint>
 #include <vector>
 
 namespace atp
@@ -15,8 +16,10 @@ namespace atp
 /// patch). Triangles that the weld makes degenerate (a repeated corner) are dropped. Missing
 /// BoundaryEdges read as 0; where only some patches have normals (colors), the others get +z
 /// (opaque white).
-/// Deterministic: the output depends only on the patches and their order.
-VTKATPFILTERS_EXPORT PatchMesh MergePatches(const std::vector<const PatchMesh*>& patches);
+/// Deterministic: the output depends only on the patches and their order. When
+/// `trianglePatch` is given, it receives the index in `patches` of every output triangle.
+VTKATPFILTERS_EXPORT PatchMesh MergePatches(const std::vector<const PatchMesh*>& patches,
+  std::vector<std::uint32_t>* trianglePatch = nullptr);
 
 } // namespace atp
 

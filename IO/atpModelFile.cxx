@@ -3,6 +3,7 @@
 #include "atpFileDescriptor.h"
 
 #include "atpChecksum.h"
+#include "atpPatchCodec.h"
 
 #include <xxhash.h>
 
@@ -450,6 +451,24 @@ void ModelFile::CheckPatch(std::size_t i) const
   {
     Throw(Cat("node ", i, ": patch checksum mismatch: the patch is corrupt"));
   }
+}
+
+QuantizationGrid ModelFile::PatchGrid() const
+{
+  const ModelHeader& h = Header();
+  QuantizationGrid grid;
+  for (int a = 0; a < 3; ++a)
+  {
+    grid.Origin[a] = h.QuantizationOrigin[a];
+  }
+  grid.Step = h.QuantizationStep;
+  return grid;
+}
+
+void ModelFile::DecodePatch(std::size_t i, PatchMesh& out) const
+{
+  CheckPatch(i);
+  atp::DecodePatch(PatchData(i), NodeArray[i].PatchBytes, PatchGrid(), out);
 }
 
 std::vector<std::string> ModelFile::Verify() const

@@ -6,6 +6,8 @@
 #define atpModelFile_h
 
 #include "atpModelFormat.h"
+#include "atpPatchMesh.h"
+#include "atpQuantizationGrid.h"
 #include "vtkATPIOModule.h"
 
 #include <cstddef>
@@ -46,6 +48,11 @@ public:
   const std::uint8_t* PatchData(std::size_t i) const { return PatchSection + NodeArray[i].PatchOffset; }
   /// Compares node i's patch with its checksum; throws ModelError naming the node.
   void CheckPatch(std::size_t i) const;
+  /// The grid every patch of this model stores its positions on.
+  QuantizationGrid PatchGrid() const;
+  /// CheckPatch, then decodes node i's patch into `out` (reusing its capacity). Throws
+  /// ModelError or PatchFormatError.
+  void DecodePatch(std::size_t i, PatchMesh& out) const;
   /// Full verification: the patch section's checksum and every patch's. Returns the problems
   /// found (empty: valid), at most the first 100 patches listed.
   std::vector<std::string> Verify() const;

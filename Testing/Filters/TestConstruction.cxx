@@ -112,17 +112,6 @@ int BuildModel(vtkPolyData* mesh, const std::string& path, int threads, int capa
   return ok;
 }
 
-atp::QuantizationGrid GridOf(const atp::ModelFile& model)
-{
-  atp::QuantizationGrid grid;
-  for (int a = 0; a < 3; ++a)
-  {
-    grid.Origin[a] = model.Header().QuantizationOrigin[a];
-  }
-  grid.Step = model.Header().QuantizationStep;
-  return grid;
-}
-
 /// Where the input's vertices land after quantization: the only positions a model may hold.
 std::set<Position> QuantizedInput(vtkPolyData* mesh, const atp::QuantizationGrid& grid)
 {
@@ -277,7 +266,7 @@ TEST_F(Construction, VerticesAreInputVerticesBorderBitExact)
   // share) are bit-exact on the model's grid at every level; interiors of simplified patches may
   // sit on a coarser grid, within the patch's error.
   const atp::ModelFile model = atp::ModelFile::Open(Path);
-  const atp::QuantizationGrid grid = GridOf(model);
+  const atp::QuantizationGrid grid = model.PatchGrid();
   const std::set<Position> input = QuantizedInput(Mesh, grid);
   vtkNew<vtkStaticPointLocator> locator;
   locator->SetDataSet(Mesh);
@@ -371,7 +360,7 @@ TEST_F(Construction, SaturatedBoundsAreEqualOverDiamondsAndMonotone)
   EXPECT_GT(sharedDiamonds, model.NodeCount() / 2);
 
   // Tight spheres hold their patches' vertices.
-  const atp::QuantizationGrid grid = GridOf(model);
+  const atp::QuantizationGrid grid = model.PatchGrid();
   atp::PatchMesh patch;
   for (std::uint32_t i = 0; i < model.NodeCount(); ++i)
   {
@@ -514,7 +503,7 @@ TEST_F(Construction, InputColorsReachEveryLevel)
   const atp::ModelFile model = atp::ModelFile::Open(path);
   EXPECT_EQ(model.Header().Flags & atp::ModelFlagColors, atp::ModelFlagColors);
 
-  const atp::QuantizationGrid grid = GridOf(model);
+  const atp::QuantizationGrid grid = model.PatchGrid();
   std::map<Position, std::array<std::uint8_t, 4>> inputColors; // by quantized position
   for (vtkIdType i = 0; i < colored->GetNumberOfPoints(); ++i)
   {

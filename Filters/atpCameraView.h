@@ -1,0 +1,23 @@
+// The cut's ViewPoint for a VTK camera: the one place where VTK's camera conventions (view
+// angle, parallel projection, actor transforms) turn into the plain view the cut works with.
+#ifndef atpCameraView_h
+#define atpCameraView_h
+
+#include "atpCut.h"
+#include "vtkATPFiltersModule.h"
+
+class vtkCamera;
+class vtkMatrix4x4;
+
+namespace atp
+{
+
+/// The view of `camera` for a viewport of width x height pixels, in the model's coordinates:
+/// `modelToWorld` is the actor's matrix (null: identity). The four side planes of the frustum
+/// are set (near and far are left out: clipping ranges follow what is drawn, not the reverse).
+VTKATPFILTERS_EXPORT ViewPoint ViewFromCamera(vtkCamera* camera, int width, int height,
+  vtkMatrix4x4* modelToWorld, double tolerancePixels, bool backfaceCulling);
+
+} // namespace atp
+
+#endif
