@@ -129,6 +129,7 @@ void CutSelector::Select(const ViewPoint& view, double errorScale, const Residen
 {
   out.Drawn.clear();
   out.Missing.clear();
+  out.Held.clear();
   out.Visited = 0;
   View = &view;
   Scale = errorScale;
@@ -141,10 +142,10 @@ void CutSelector::Select(const ViewPoint& view, double errorScale, const Residen
   }
   const CutIndex& index = *IndexRef;
   auto needs = [&](std::uint32_t node) {
-    if (MissingStamp[node] != Stamp && resident && !resident(node))
+    if (MissingStamp[node] != Stamp)
     {
       MissingStamp[node] = Stamp;
-      out.Missing.push_back(node);
+      (resident(node) ? out.Held : out.Missing).push_back(node);
     }
   };
 

@@ -60,6 +60,8 @@ struct CutResult
   /// Patches the view needs that are not resident, coarser first: a node whose diamond would
   /// refine waits (and is drawn) until all the children of all its diamond's members are.
   std::vector<std::uint32_t> Missing;
+  /// Resident patches such a waiting diamond will need: keep them loaded.
+  std::vector<std::uint32_t> Held;
   std::size_t Visited = 0;            ///< nodes the traversal looked at
   bool Complete() const { return Missing.empty(); }
 };

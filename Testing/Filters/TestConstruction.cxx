@@ -7,6 +7,7 @@
 #include "atpPatchCodec.h"
 #include "atpQuantizationGrid.h"
 #include "atpTetra.h"
+#include "MeshEdges.h"
 #include "vtkATPBuilder.h"
 
 #include "vtkCallbackCommand.h"
@@ -36,8 +37,10 @@
 
 namespace
 {
-using Position = std::array<float, 3>;
-using Edge = std::pair<Position, Position>;
+using atp::test::Edge;
+using atp::test::EdgeUses;
+using atp::test::OpenEdges;
+using atp::test::Position;
 
 /// A bumpy torus of nu x nv quads (two triangles each); `holes` rectangular holes of 3 x 4 quads
 /// are left out, each giving one boundary loop of 14 edges.
@@ -127,40 +130,6 @@ std::set<Position> QuantizedInput(vtkPolyData* mesh, const atp::QuantizationGrid
     positions.insert(out);
   }
   return positions;
-}
-
-/// How many triangles use each edge (vertex pair) of an indexed mesh.
-std::map<std::pair<std::uint32_t, std::uint32_t>, int> EdgeUses(const atp::PatchMesh& mesh)
-{
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
-  for (std::size_t t = 0; t < mesh.TriangleCount(); ++t)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      std::uint32_t a = mesh.Indices[3 * t + std::size_t(c)];
-      std::uint32_t b = mesh.Indices[3 * t + std::size_t(c + 1) % 3];
-      ++uses[{ std::min(a, b), std::max(a, b) }];
-    }
-  }
-  return uses;
-}
-
-/// Open edges (used by one triangle) of a welded mesh, as position pairs.
-std::vector<Edge> OpenEdges(const atp::PatchMesh& mesh)
-{
-  const auto uses = EdgeUses(mesh);
-  std::vector<Edge> open;
-  const auto at = [&mesh](std::uint32_t v) {
-    return Position{ { mesh.Positions[3 * v], mesh.Positions[3 * v + 1], mesh.Positions[3 * v + 2] } };
-  };
-  for (const auto& [edge, count] : uses)
-  {
-    if (count == 1)
-    {
-      open.push_back({ at(edge.first), at(edge.second) });
-    }
-  }
-  return open;
 }
 
 /// Boundary loops: open edges joined at shared vertices (each vertex on two of them).

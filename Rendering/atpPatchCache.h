@@ -1,0 +1,123 @@
+// A least-recently-used cache of per-patch values under a byte budget, where everything used in
+// the current frame is pinned: a frame never evicts what it draws. Plain C++ and header-only, so
+// that the policy is testable without a GPU; the mapper stores buffer objects in it.
+#ifndef atpPatchCache_h
+#define atpPatchCache_h
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <list>
+#include <unordered_map>
+
+namespace atp
+{
+
+template <typename Value>
+class PatchCache
+{
+public:
+  /// Called with every value that leaves the cache (evicted or cleared), to free it.
+  using ReleaseFunction = std::function<void(Value&)>;
+
+  explicit PatchCache(ReleaseFunction release)
+    : Release(std::move(release))
+  {
+  }
+  ~PatchCache() { Clear(); }
+  PatchCache(const PatchCache&) = delete;
+  PatchCache& operator=(const PatchCache&) = delete;
+
+  void SetBudget(std::size_t bytes) { Budget = bytes; }
+  std::size_t GetBudget() const { return Budget; }
+  /// Starts a new frame: what the previous frames used may be evicted again.
+  void NewFrame() { ++Frame; }
+
+  bool Contains(std::uint32_t key) const { return Entries.count(key) != 0; }
+
+  /// The value, marked used by (and pinned for) this frame; null when absent.
+  Value* Use(std::uint32_t key)
+  {
+    const auto found = Entries.find(key);
+    if (found == Entries.end())
+    {
+      return nullptr;
+    }
+    Order.splice(Order.begin(), Order, found->second);
+    found->second->LastFrame = Frame;
+    return &found->second->Item;
+  }
+
+  /// Makes room for `bytes` by evicting the least recently used values not pinned by this
+  /// frame. False (and nothing evicted) when even that cannot make the room.
+  bool MakeRoom(std::size_t bytes)
+  {
+    std::size_t evictable = 0;
+    for (const Entry& e : Order)
+    {
+      evictable += e.LastFrame == Frame ? 0 : e.Bytes;
+    }
+    if (Bytes - evictable + bytes > Budget)
+    {
+      return false;
+    }
+    for (auto it = Order.end(); Bytes + bytes > Budget && it != Order.begin();)
+    {
+      --it;
+      if (it->LastFrame != Frame)
+      {
+        Release(it->Item);
+        Bytes -= it->Bytes;
+        Entries.erase(it->Key);
+        it = Order.erase(it);
+        ++Evictions;
+      }
+    }
+    return true;
+  }
+
+  /// Stores a value of `bytes` (pinned for this frame); the caller made room first.
+  Value& Insert(std::uint32_t key, Value value, std::size_t bytes)
+  {
+    Order.push_front(Entry{ key, std::move(value), bytes, Frame });
+    Entries[key] = Order.begin();
+    Bytes += bytes;
+    return Order.front().Item;
+  }
+
+  void Clear()
+  {
+    for (Entry& e : Order)
+    {
+      Release(e.Item);
+    }
+    Order.clear();
+    Entries.clear();
+    Bytes = 0;
+  }
+
+  std::size_t GetBytes() const { return Bytes; }
+  std::size_t GetCount() const { return Entries.size(); }
+  std::uint64_t GetEvictions() const { return Evictions; }
+
+private:
+  struct Entry
+  {
+    std::uint32_t Key;
+    Value Item;
+    std::size_t Bytes;
+    std::uint64_t LastFrame;
+  };
+
+  ReleaseFunction Release;
+  std::list<Entry> Order; ///< most recently used first
+  std::unordered_map<std::uint32_t, typename std::list<Entry>::iterator> Entries;
+  std::size_t Budget = std::size_t(512) << 20;
+  std::size_t Bytes = 0;
+  std::uint64_t Frame = 1;
+  std::uint64_t Evictions = 0;
+};
+
+} // namespace atp
+
+#endif

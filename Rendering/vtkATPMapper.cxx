@@ -1,0 +1,480 @@
+#include "vtkATPMapper.h"
+
+#include "atpCameraView.h"
+#include "atpCut.h"
+#include "atpPatchCache.h"
+#include "atpPatchFetcher.h"
+#include "atpPatchShaders.h"
+#include "atpPrefetcher.h"
+#include "atpRenderStatistics.h"
+#include "atpTetra.h"
+#include "vtkATPModel.h"
+
+#include "vtkActor.h"
+#include "vtkExecutive.h"
+#include "vtkInformation.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLActor.h"
+#include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLCamera.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLRenderer.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkOpenGLVertexArrayObject.h"
+#include "vtkProperty.h"
+#include "vtkShaderProgram.h"
+#include "vtkSmartPointer.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <thread>
+#include <unordered_set>
+
+vtkStandardNewMacro(vtkATPMapper);
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// One patch on the GPU: interleaved vertices, indices, and the attribute layout for the
+/// program it was last drawn with.
+struct GpuPatch
+{
+  vtkSmartPointer<vtkOpenGLBufferObject> Vertices;
+  vtkSmartPointer<vtkOpenGLBufferObject> Indices;
+  vtkSmartPointer<vtkOpenGLVertexArrayObject> Layout;
+  vtkShaderProgram* LayoutProgram = nullptr;
+  GLsizei IndexCount = 0;
+  GLenum IndexType = GL_UNSIGNED_SHORT;
+  std::size_t Stride = 0;
+  bool HasColors = false;
+  std::uint32_t Triangles = 0;
+
+  void Release()
+  {
+    Layout->ReleaseGraphicsResources();
+    Vertices->ReleaseGraphicsResources();
+    Indices->ReleaseGraphicsResources();
+  }
+};
+
+/// What one render window holds: GPU resources live in its context.
+struct WindowCache
+{
+  atp::PatchCache<GpuPatch> Patches{ [](GpuPatch& p) { p.Release(); } };
+  std::uint64_t ModelGeneration = 0;
+};
+} // namespace
+
+struct vtkATPMapper::Internals
+{
+  std::shared_ptr<const atp::ModelFile> Model;
+  std::uint64_t ModelGeneration = 0;
+  std::shared_ptr<const atp::CutIndex> Index;
+  std::unique_ptr<atp::CutSelector> Selector;
+  std::unique_ptr<atp::PatchFetcher> Fetcher;
+  std::unique_ptr<atp::Prefetcher> Prefetch;
+  std::unordered_set<std::uint32_t> Corrupt; ///< reported once, never drawn
+  std::map<vtkWindow*, std::unique_ptr<WindowCache>> Windows;
+  atp::CutResult Cut;
+  std::vector<atp::RenderPatch> Arrived;
+  atp::RenderStatistics Stats;
+  Clock::time_point Start = Clock::now();
+  vtkNew<vtkMatrix4x4> ModelToDevice, ModelToView;
+  vtkNew<vtkMatrix3x3> NormalMatrix;
+
+  void Reset() { Selector.reset(); Prefetch.reset(); Fetcher.reset(); Index.reset(); Model.reset(); Corrupt.clear(); }
+};
+
+vtkATPMapper::vtkATPMapper()
+  : Impl(new Internals)
+{
+}
+
+vtkATPMapper::~vtkATPMapper()
+{
+  // GPU resources are gone with their windows' contexts by now (ReleaseGraphicsResources);
+  // what is left is only forgotten, never freed in a foreign context.
+  for (auto& w : this->Impl->Windows)
+  {
+    w.second->Patches.SetBudget(0);
+  }
+}
+
+void vtkATPMapper::SetInputData(vtkATPModel* model)
+{
+  this->SetInputDataInternal(0, model);
+}
+
+vtkATPModel* vtkATPMapper::GetInput()
+{
+  return vtkATPModel::SafeDownCast(this->GetExecutive()->GetInputData(0, 0));
+}
+
+int vtkATPMapper::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkATPModel");
+  return 1;
+}
+
+bool vtkATPMapper::GetConverged() const
+{
+  return this->Impl->Stats.Converged;
+}
+
+const atp::RenderStatistics& vtkATPMapper::GetStatistics() const
+{
+  return this->Impl->Stats;
+}
+
+const std::vector<unsigned>& vtkATPMapper::GetDrawnNodes() const
+{
+  return this->Impl->Cut.Drawn;
+}
+
+double* vtkATPMapper::GetBounds()
+{
+  if (this->GetNumberOfInputConnections(0) > 0)
+  {
+    this->GetInputAlgorithm()->Update();
+  }
+  vtkATPModel* input = this->GetInput();
+  if (input)
+  {
+    input->GetBounds(this->Bounds);
+  }
+  else
+  {
+    vtkMath::UninitializeBounds(this->Bounds);
+  }
+  return this->Bounds;
+}
+
+void vtkATPMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  const auto found = this->Impl->Windows.find(window);
+  if (found != this->Impl->Windows.end())
+  {
+    found->second->Patches.Clear();
+    this->Impl->Windows.erase(found);
+  }
+  this->Modified();
+}
+
+namespace
+{
+/// Uploads a decoded patch into new buffer objects.
+GpuPatch Upload(const atp::RenderPatch& patch)
+{
+  GpuPatch gpu;
+  gpu.Vertices = vtkSmartPointer<vtkOpenGLBufferObject>::New();
+  gpu.Indices = vtkSmartPointer<vtkOpenGLBufferObject>::New();
+  gpu.Layout = vtkSmartPointer<vtkOpenGLVertexArrayObject>::New();
+  gpu.Vertices->Upload(patch.Vertices, vtkOpenGLBufferObject::ArrayBuffer);
+  gpu.Indices->Upload(patch.Indices, vtkOpenGLBufferObject::ElementArrayBuffer);
+  gpu.IndexCount = GLsizei(3 * patch.TriangleCount);
+  gpu.IndexType = patch.ShortIndices ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
+  gpu.Stride = patch.Stride();
+  gpu.HasColors = patch.HasColors;
+  gpu.Triangles = patch.TriangleCount;
+  return gpu;
+}
+
+void BindLayout(GpuPatch& gpu, vtkShaderProgram* program, bool colors)
+{
+  if (gpu.LayoutProgram == program)
+  {
+    return;
+  }
+  gpu.Layout->ShaderProgramChanged();
+  gpu.Layout->Bind();
+  gpu.Layout->AddAttributeArray(program, gpu.Vertices, "vertexMC",
+    int(atp::RenderPatchPositionOffset), gpu.Stride, VTK_FLOAT, 3, false);
+  gpu.Layout->AddAttributeArray(program, gpu.Vertices, "normalMC",
+    int(atp::RenderPatchNormalOffset), gpu.Stride, VTK_SHORT, 4, true);
+  if (colors)
+  {
+    gpu.Layout->AddAttributeArray(program, gpu.Vertices, "colorMC",
+      int(atp::RenderPatchColorOffset), gpu.Stride, VTK_UNSIGNED_CHAR, 4, true);
+  }
+  gpu.LayoutProgram = program;
+}
+} // namespace
+
+void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
+{
+  Internals& in = *this->Impl;
+  const Clock::time_point frameStart = Clock::now();
+  if (this->GetNumberOfInputConnections(0) > 0)
+  {
+    this->GetInputAlgorithm()->Update();
+  }
+  vtkATPModel* input = this->GetInput();
+  std::shared_ptr<const atp::ModelFile> model = input ? input->GetSharedModelFile() : nullptr;
+  if (!model)
+  {
+    vtkErrorMacro(<< "no model to draw: the input is empty");
+    return;
+  }
+  if (model != in.Model)
+  {
+    in.Reset();
+    try
+    {
+      in.Index = std::make_shared<const atp::CutIndex>(*model);
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorMacro(<< e.what());
+      return;
+    }
+    in.Model = model;
+    ++in.ModelGeneration;
+    in.Selector.reset(new atp::CutSelector(*model, in.Index));
+    const int threads = this->DecodeThreads > 0
+      ? this->DecodeThreads
+      : std::max(1, int(std::thread::hardware_concurrency()) - 1);
+    in.Fetcher.reset(new atp::PatchFetcher(model, threads));
+    in.Stats = atp::RenderStatistics();
+  }
+  if (this->Prefetching && !in.Prefetch)
+  {
+    in.Prefetch.reset(new atp::Prefetcher(model, in.Index));
+  }
+  else if (!this->Prefetching)
+  {
+    in.Prefetch.reset();
+  }
+
+  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  std::unique_ptr<WindowCache>& slot = in.Windows[window];
+  if (!slot)
+  {
+    slot.reset(new WindowCache);
+  }
+  WindowCache& cache = *slot;
+  if (cache.ModelGeneration != in.ModelGeneration)
+  {
+    cache.Patches.Clear();
+    cache.ModelGeneration = in.ModelGeneration;
+  }
+  cache.Patches.SetBudget(std::size_t(this->CacheBudget));
+  cache.Patches.NewFrame();
+  atp::RenderStatistics& stats = in.Stats;
+  ++stats.Frame;
+  stats.Uploads = 0;
+  stats.UploadBytes = 0;
+
+  // What the decoders finished since the last frame goes to the GPU first, so this frame's
+  // cut can use it.
+  const Clock::time_point uploadStart = Clock::now();
+  auto store = [&](const atp::RenderPatch& patch, bool mustFit) {
+    if (!patch.Error.empty())
+    {
+      if (in.Corrupt.insert(patch.Node).second)
+      {
+        vtkErrorMacro(<< patch.Error);
+      }
+      return;
+    }
+    if (cache.Patches.Contains(patch.Node) || !(cache.Patches.MakeRoom(patch.Bytes()) || mustFit))
+    {
+      return; // no room: the region stays coarser, and the patch is asked for again later
+    }
+    cache.Patches.Insert(patch.Node, Upload(patch), patch.Bytes());
+    ++stats.Uploads;
+    stats.UploadBytes += patch.Bytes();
+  };
+  in.Arrived.clear();
+  in.Fetcher->TakeFinished(std::size_t(this->UploadBudget), in.Arrived);
+  for (const atp::RenderPatch& patch : in.Arrived)
+  {
+    store(patch, false);
+  }
+
+  int width = 0, height = 0, x0 = 0, y0 = 0;
+  renderer->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const atp::ViewPoint view = atp::ViewFromCamera(camera, width, height,
+    actor->GetIsIdentity() ? nullptr : actor->GetMatrix(), this->TolerancePixels,
+    this->BackfaceCulling);
+  const double errorScale = model->Header().ErrorScale;
+  const atp::ResidentFunction resident = [&](std::uint32_t node) {
+    return model->Node(node).TriangleCount == 0 ||
+      (cache.Patches.Contains(node) && !in.Corrupt.count(node));
+  };
+  const Clock::time_point cutStart = Clock::now();
+  in.Selector->Select(view, errorScale, resident, in.Cut);
+  // The roots are all there is to fall back on: the first frame decodes them itself.
+  bool rootsLoaded = false;
+  for (const std::uint32_t node : in.Cut.Missing)
+  {
+    if (node < atp::RootCount && !in.Corrupt.count(node))
+    {
+      store(in.Fetcher->DecodeNow(node), true);
+      rootsLoaded = true;
+    }
+  }
+  if (rootsLoaded)
+  {
+    in.Selector->Select(view, errorScale, resident, in.Cut);
+  }
+  stats.CutSeconds = SecondsSince(cutStart);
+  std::vector<std::uint32_t> wanted;
+  wanted.reserve(in.Cut.Missing.size());
+  for (const std::uint32_t node : in.Cut.Missing)
+  {
+    if (!in.Corrupt.count(node))
+    {
+      wanted.push_back(node);
+    }
+  }
+  in.Fetcher->Request(wanted);
+  for (const std::uint32_t node : in.Cut.Held)
+  {
+    cache.Patches.Use(node);
+  }
+  stats.UploadSeconds = SecondsSince(uploadStart) - stats.CutSeconds;
+
+  // Draw.
+  const Clock::time_point drawStart = Clock::now();
+  const bool colors = (model->Header().Flags & atp::ModelFlagColors) != 0;
+  auto* openGLRenderer = vtkOpenGLRenderer::SafeDownCast(renderer);
+  vtkProperty* property = actor->GetProperty();
+  const int complexity = property->GetLighting() ? openGLRenderer->GetLightingComplexity() : 0;
+  const int lights = openGLRenderer->GetLightingCount();
+  const std::string vertexShader = atp::PatchVertexShader(colors);
+  const std::string fragmentShader = atp::PatchFragmentShader(colors, complexity, lights,
+    complexity > 0 ? openGLRenderer->GetLightingUniforms() : "");
+  vtkShaderProgram* program = window->GetShaderCache()->ReadyShaderProgram(
+    vertexShader.c_str(), fragmentShader.c_str(), "");
+  if (!program)
+  {
+    vtkErrorMacro(<< "the patch shaders did not compile");
+    return;
+  }
+  if (complexity > 0)
+  {
+    openGLRenderer->UpdateLightingUniforms(program);
+  }
+
+  vtkMatrix4x4 *worldToView, *viewToDevice, *worldToDevice;
+  vtkMatrix3x3* worldNormals;
+  static_cast<vtkOpenGLCamera*>(camera)->GetKeyMatrices(
+    renderer, worldToView, worldNormals, viewToDevice, worldToDevice);
+  if (actor->GetIsIdentity())
+  {
+    program->SetUniformMatrix("MCDCMatrix", worldToDevice);
+    program->SetUniformMatrix("MCVCMatrix", worldToView);
+    program->SetUniformMatrix("normalMatrix", worldNormals);
+  }
+  else
+  {
+    vtkMatrix4x4* modelToWorld;
+    vtkMatrix3x3* modelNormals;
+    static_cast<vtkOpenGLActor*>(actor)->GetKeyMatrices(modelToWorld, modelNormals);
+    vtkMatrix4x4::Multiply4x4(modelToWorld, worldToDevice, in.ModelToDevice);
+    vtkMatrix4x4::Multiply4x4(modelToWorld, worldToView, in.ModelToView);
+    vtkMatrix3x3::Multiply3x3(modelNormals, worldNormals, in.NormalMatrix);
+    program->SetUniformMatrix("MCDCMatrix", in.ModelToDevice);
+    program->SetUniformMatrix("MCVCMatrix", in.ModelToView);
+    program->SetUniformMatrix("normalMatrix", in.NormalMatrix);
+  }
+  const double opacity = property->GetOpacity();
+  program->SetUniform3f("ambientColorUniform", property->GetAmbientColor());
+  program->SetUniform3f("diffuseColorUniform", property->GetDiffuseColor());
+  program->SetUniform3f("specularColorUniform", property->GetSpecularColor());
+  program->SetUniformf("ambientIntensity", float(property->GetAmbient()));
+  program->SetUniformf("diffuseIntensity", float(property->GetDiffuse()));
+  program->SetUniformf("specularIntensity", float(property->GetSpecular()));
+  program->SetUniformf("specularPower", float(property->GetSpecularPower()));
+  program->SetUniformf("opacityUniform", float(opacity));
+  const int colorSource = this->PatchColoring ? 2 : (colors && this->ScalarVisibility ? 1 : 0);
+  program->SetUniformi("colorSource", colorSource);
+
+  vtkOpenGLState* state = window->GetState();
+  const int representation = property->GetRepresentation();
+  if (representation != VTK_SURFACE)
+  {
+    glPolygonMode(GL_FRONT_AND_BACK, representation == VTK_WIREFRAME ? GL_LINE : GL_POINT);
+  }
+  stats.Patches = 0;
+  stats.Triangles = 0;
+  stats.CacheHits = 0;
+  vtkOpenGLVertexArrayObject* bound = nullptr;
+  for (const std::uint32_t node : in.Cut.Drawn)
+  {
+    GpuPatch* gpu = cache.Patches.Use(node);
+    if (!gpu)
+    {
+      continue; // cannot happen: the cut draws resident patches only
+    }
+    BindLayout(*gpu, program, colors);
+    gpu->Layout->Bind();
+    gpu->Indices->Bind();
+    bound = gpu->Layout;
+    if (this->PatchColoring)
+    {
+      float rgb[3];
+      atp::PatchColor(node, rgb);
+      program->SetUniform3f("patchColor", rgb);
+    }
+    glDrawElements(GL_TRIANGLES, gpu->IndexCount, gpu->IndexType, nullptr);
+    ++stats.Patches;
+    stats.Triangles += gpu->Triangles;
+  }
+  if (bound)
+  {
+    bound->Release();
+  }
+  if (representation != VTK_SURFACE)
+  {
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  }
+  (void)state;
+  stats.DrawSeconds = SecondsSince(drawStart);
+
+  stats.CacheHits = stats.Patches >= stats.Uploads ? stats.Patches - stats.Uploads : 0;
+  stats.CacheMisses = in.Cut.Missing.size();
+  stats.CacheEntries = cache.Patches.GetCount();
+  stats.CacheBytes = cache.Patches.GetBytes();
+  stats.Evictions = cache.Patches.GetEvictions();
+  stats.CutNodes = in.Cut.Visited;
+  stats.DecodeSeconds = in.Fetcher->DecodeSeconds();
+  stats.DecodedPatches = in.Fetcher->DecodedPatches();
+  stats.Converged = wanted.empty(); // corrupt patches are never coming
+  if (in.Prefetch)
+  {
+    in.Prefetch->Observe(view, errorScale, SecondsSince(in.Start));
+    stats.PrefetchPasses = in.Prefetch->Passes();
+    stats.PrefetchAdvisedPages = in.Prefetch->AdvisedPages();
+  }
+  this->TimeToDraw = SecondsSince(frameStart);
+}
+
+void vtkATPMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  const atp::RenderStatistics& s = this->Impl->Stats;
+  os << indent << "TolerancePixels: " << this->TolerancePixels << "\n";
+  os << indent << "CacheBudget: " << this->CacheBudget << "\n";
+  os << indent << "UploadBudget: " << this->UploadBudget << "\n";
+  os << indent << "BackfaceCulling: " << this->BackfaceCulling << "\n";
+  os << indent << "Prefetching: " << this->Prefetching << "\n";
+  os << indent << "PatchColoring: " << this->PatchColoring << "\n";
+  os << indent << "DecodeThreads: " << this->DecodeThreads << "\n";
+  os << indent << "LastFrame: " << s.Patches << " patches, " << s.Triangles << " triangles, "
+     << s.Uploads << " uploads, " << s.CacheMisses << " missing, cache " << s.CacheEntries
+     << " patches / " << s.CacheBytes << " bytes, converged " << s.Converged << "\n";
+}

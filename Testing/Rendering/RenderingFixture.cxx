@@ -1,0 +1,126 @@
+#include "RenderingFixture.h"
+
+#include "vtkATPBuilder.h"
+#include "vtkATPMapper.h"
+
+#include "vtkCamera.h"
+#include "vtkImageData.h"
+#include "vtkImageDifference.h"
+#include "vtkNew.h"
+#include "vtkPNGReader.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkTesting.h"
+#include "vtkWindowToImageFilter.h"
+
+#include <chrono>
+#include <stdexcept>
+#include <thread>
+#include <unistd.h>
+
+namespace atp
+{
+namespace test
+{
+
+std::string TempPath(const std::string& name)
+{
+  return "/tmp/atp-test-rendering-" + std::to_string(::getpid()) + "-" + name;
+}
+
+const std::string& TorusModel()
+{
+  static const std::string path = [] {
+    const std::string model = TempPath("torus.atp");
+    vtkNew<vtkATPBuilder> builder;
+    builder->SetInputFileName(ATP_DATA_DIR "/bumpy-torus.ply");
+    builder->SetFileName(model.c_str());
+    builder->SetLeafCapacity(1000);
+    builder->SetPatchBudget(500);
+    if (!builder->Build())
+    {
+      throw std::runtime_error("the test model did not build");
+    }
+    std::atexit([] { ::unlink(TempPath("torus.atp").c_str()); });
+    return model;
+  }();
+  return path;
+}
+
+vtkSmartPointer<vtkRenderWindow> MakeWindow(int width, int height)
+{
+  auto window = vtkSmartPointer<vtkRenderWindow>::New();
+  window->SetOffScreenRendering(1);
+  window->SetSize(width, height);
+  window->SetMultiSamples(0);
+  vtkNew<vtkRenderer> renderer;
+  renderer->SetBackground(0, 0, 0);
+  window->AddRenderer(renderer);
+  return window;
+}
+
+void AimCamera(vtkRenderer* renderer, double azimuth, double elevation, double zoom)
+{
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetFocalPoint(0, 0, 0);
+  camera->SetPosition(0, 0, 1);
+  camera->SetViewUp(0, 1, 0);
+  renderer->ResetCamera();
+  camera->Azimuth(azimuth);
+  camera->Elevation(elevation);
+  camera->OrthogonalizeViewUp();
+  camera->Dolly(zoom);
+  renderer->ResetCameraClippingRange();
+}
+
+int RenderUntilConverged(vtkRenderWindow* window, vtkATPMapper* mapper, int frames)
+{
+  for (int frame = 1; frame <= frames; ++frame)
+  {
+    window->Render();
+    if (mapper->GetConverged())
+    {
+      return frame;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  return frames + 1;
+}
+
+vtkSmartPointer<vtkImageData> Grab(vtkRenderWindow* window)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->ReadFrontBufferOff();
+  grab->Update();
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->DeepCopy(grab->GetOutput());
+  return image;
+}
+
+double ImageError(vtkImageData* a, vtkImageData* b)
+{
+  vtkNew<vtkImageDifference> difference;
+  difference->SetInputData(a);
+  difference->SetImageData(b);
+  difference->Update();
+  return difference->GetThresholdedError();
+}
+
+bool MatchesBaseline(vtkRenderWindow* window, const std::string& name, double threshold, double& error)
+{
+  vtkNew<vtkTesting> testing;
+  testing->AddArgument("-V");
+  const std::string baseline = std::string(ATP_TEST_DATA_DIR) + "/Baseline/" + name + ".png";
+  testing->AddArgument(baseline.c_str());
+  testing->AddArgument("-T");
+  testing->AddArgument("/tmp");
+  testing->SetRenderWindow(window);
+  testing->FrontBufferOff();
+  const int result = testing->RegressionTest(threshold);
+  error = testing->GetImageDifference();
+  return result == vtkTesting::PASSED;
+}
+
+} // namespace test
+} // namespace atp

@@ -1,0 +1,300 @@
+// vtkATPMapper in VTK's image-comparison harness: fidelity against vtkPolyDataMapper on the
+// full-resolution input, baselines, a test that the comparison can fail, small caches,
+// corrupt patches, several renderers and windows, and frames that never wait for decoding.
+#include "MeshEdges.h"
+#include "RenderingFixture.h"
+
+#include "atpCut.h"
+#include "atpModelFile.h"
+#include "atpRenderStatistics.h"
+#include "atpTetra.h"
+#include "vtkATPMapper.h"
+#include "vtkATPReader.h"
+
+#include "vtkActor.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkCommand.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPLYReader.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkPolyDataNormals.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkRendererCollection.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <unistd.h>
+
+namespace
+{
+using namespace atp::test;
+
+/// VTK's regression tests accept an image error up to this (vtkRegressionTestImage's 0.05 is
+/// for identical code paths; two mappers and two triangulations get a little more).
+constexpr double FidelityThreshold = 0.15;
+constexpr int Width = 400, Height = 300;
+
+vtkRenderer* FirstRenderer(vtkRenderWindow* window)
+{
+  return window->GetRenderers()->GetFirstRenderer();
+}
+
+struct AtpScene
+{
+  vtkNew<vtkATPReader> Reader;
+  vtkNew<vtkATPMapper> Mapper;
+  vtkNew<vtkActor> Actor;
+  vtkSmartPointer<vtkRenderWindow> Window = MakeWindow(Width, Height);
+
+  explicit AtpScene(const std::string& model = TorusModel())
+  {
+    Reader->SetFileName(model.c_str());
+    Mapper->SetInputConnection(Reader->GetOutputPort());
+    Actor->SetMapper(Mapper);
+    FirstRenderer(Window)->AddActor(Actor);
+  }
+};
+
+/// The input mesh at full resolution, drawn by VTK's own mapper, with smooth normals.
+vtkSmartPointer<vtkImageData> FullResolution(double azimuth, double elevation, double zoom)
+{
+  vtkNew<vtkPLYReader> reader;
+  reader->SetFileName(ATP_DATA_DIR "/bumpy-torus.ply");
+  vtkNew<vtkPolyDataNormals> normals;
+  normals->SetInputConnection(reader->GetOutputPort());
+  normals->SplittingOff();
+  normals->ConsistencyOff();
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(normals->GetOutputPort());
+  mapper->ScalarVisibilityOff();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  auto window = MakeWindow(Width, Height);
+  FirstRenderer(window)->AddActor(actor);
+  AimCamera(FirstRenderer(window), azimuth, elevation, zoom);
+  window->Render();
+  return Grab(window);
+}
+
+struct ErrorCounter
+{
+  vtkNew<vtkCallbackCommand> Command;
+  int Errors = 0;
+  ErrorCounter()
+  {
+    Command->SetClientData(this);
+    Command->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
+      ++static_cast<ErrorCounter*>(self)->Errors;
+    });
+  }
+};
+
+TEST(Mapper, MatchesTheFullResolutionMapperAtOnePixel)
+{
+  struct View
+  {
+    double Azimuth, Elevation, Zoom;
+  };
+  for (const View v : { View{ 30, 40, 1.0 }, View{ 150, -20, 1.6 }, View{ 260, 70, 3.0 } })
+  {
+    AtpScene scene;
+    AimCamera(FirstRenderer(scene.Window), v.Azimuth, v.Elevation, v.Zoom);
+    EXPECT_LT(RenderUntilConverged(scene.Window, scene.Mapper), 400);
+    const atp::RenderStatistics& stats = scene.Mapper->GetStatistics();
+    EXPECT_GT(stats.Triangles, 0u);
+    const double error = ImageError(FullResolution(v.Azimuth, v.Elevation, v.Zoom), Grab(scene.Window));
+    std::printf("view %g/%g/%g: %zu patches, %llu triangles, image error %.4f\n", v.Azimuth,
+      v.Elevation, v.Zoom, stats.Patches, static_cast<unsigned long long>(stats.Triangles), error);
+    EXPECT_LE(error, FidelityThreshold)
+      << "view " << v.Azimuth << "/" << v.Elevation << "/" << v.Zoom << ": " << stats.Patches
+      << " patches, " << stats.Triangles << " triangles";
+  }
+}
+
+TEST(Mapper, ACoarseToleranceFailsTheSameComparison)
+{
+  AtpScene scene;
+  scene.Mapper->SetTolerancePixels(60);
+  AimCamera(FirstRenderer(scene.Window), 30, 40, 1.0);
+  RenderUntilConverged(scene.Window, scene.Mapper);
+  EXPECT_GT(ImageError(FullResolution(30, 40, 1.0), Grab(scene.Window)), FidelityThreshold)
+    << scene.Mapper->GetStatistics().Triangles << " triangles";
+}
+
+TEST(Mapper, Baselines)
+{
+  struct Case
+  {
+    const char* Name;
+    double Azimuth, Elevation, Zoom;
+    bool PatchColoring;
+  };
+  for (const Case c : { Case{ "ATPMapperOverview", 30, 40, 1.0, false },
+         Case{ "ATPMapperPatchColoring", 30, 40, 1.0, true },
+         Case{ "ATPMapperCloseUp", 100, 50, 2.5, false } })
+  {
+    AtpScene scene;
+    scene.Mapper->SetPatchColoring(c.PatchColoring);
+    AimCamera(FirstRenderer(scene.Window), c.Azimuth, c.Elevation, c.Zoom);
+    RenderUntilConverged(scene.Window, scene.Mapper);
+    double error = 0;
+    EXPECT_TRUE(MatchesBaseline(scene.Window, c.Name, FidelityThreshold, error))
+      << c.Name << ": image error " << error;
+  }
+}
+
+TEST(Mapper, FramesNeverWaitForDecoding)
+{
+  AtpScene scene;
+  scene.Mapper->SetUploadBudget(64 << 10); // a few patches per frame
+  AimCamera(FirstRenderer(scene.Window), 30, 40, 2.0);
+  scene.Window->Render();
+  // The first frame draws what it has: the roots, decoded on the spot.
+  EXPECT_FALSE(scene.Mapper->GetConverged());
+  EXPECT_LE(scene.Mapper->GetStatistics().Patches, std::size_t(atp::RootCount));
+  const int frames = RenderUntilConverged(scene.Window, scene.Mapper, 2000);
+  EXPECT_GT(frames, 3);
+  EXPECT_LE(frames, 2000);
+  EXPECT_GT(scene.Mapper->GetStatistics().Patches, std::size_t(atp::RootCount));
+}
+
+/// The nodes drawn in a view that culls nothing must form a crack-free surface.
+void ExpectCrackFree(const std::vector<unsigned>& drawn)
+{
+  const atp::ModelFile model = atp::ModelFile::Open(TorusModel());
+  const std::vector<std::uint32_t> nodes(drawn.begin(), drawn.end());
+  const atp::PatchMesh finest = atp::ExtractCut(model, atp::SelectLevel(model, 64));
+  std::set<Position> boundary;
+  for (const Edge& e : OpenEdges(finest))
+  {
+    boundary.insert(e.first);
+    boundary.insert(e.second);
+  }
+  for (const Edge& e : OpenEdges(atp::ExtractCut(model, nodes)))
+  {
+    EXPECT_TRUE(boundary.count(e.first) && boundary.count(e.second)) << "a crack";
+  }
+}
+
+TEST(Mapper, ATinyCacheStillDrawsAConformingCut)
+{
+  AtpScene scene;
+  scene.Mapper->SetCacheBudget(256 << 10);
+  vtkRenderer* renderer = FirstRenderer(scene.Window);
+  for (const double azimuth : { 0.0, 90.0, 180.0, 270.0 })
+  {
+    AimCamera(renderer, azimuth, 20, 0.9); // the whole torus in view: nothing culled
+    RenderUntilConverged(scene.Window, scene.Mapper, 60);
+    const atp::RenderStatistics& stats = scene.Mapper->GetStatistics();
+    EXPECT_GT(stats.Patches, 0u);
+    EXPECT_LE(stats.CacheBytes, std::uint64_t(256 << 10) + (1u << 20)) << "roots may exceed";
+    ExpectCrackFree(scene.Mapper->GetDrawnNodes());
+  }
+  EXPECT_GT(scene.Mapper->GetStatistics().Evictions, 0u);
+}
+
+TEST(Mapper, CachedPatchesCostNoUploads)
+{
+  AtpScene scene;
+  AimCamera(FirstRenderer(scene.Window), 30, 40, 1.0);
+  RenderUntilConverged(scene.Window, scene.Mapper);
+  scene.Window->Render();
+  const atp::RenderStatistics& stats = scene.Mapper->GetStatistics();
+  EXPECT_EQ(stats.Uploads, 0u);
+  EXPECT_EQ(stats.CacheHits, stats.Patches);
+  EXPECT_EQ(stats.CacheMisses, 0u);
+  EXPECT_TRUE(stats.Converged);
+}
+
+TEST(Mapper, CorruptPatchIsReportedOnceAndNeverDrawn)
+{
+  const atp::ModelFile model = atp::ModelFile::Open(TorusModel());
+  // Corrupt the patch of the deepest node in the file.
+  const std::size_t victim = model.NodeCount() - 1;
+  const std::size_t offset = std::size_t(model.PatchData(victim) - model.PatchData(0)) +
+    model.Header().PatchSectionOffset + model.Node(victim).PatchBytes / 2;
+  const std::string corrupt = TempPath("corrupt.atp");
+  {
+    std::ifstream in(TorusModel(), std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    bytes[offset] = char(bytes[offset] ^ 0x5A);
+    std::ofstream(corrupt, std::ios::binary) << bytes;
+  }
+  AtpScene scene(corrupt);
+  ErrorCounter errors;
+  scene.Mapper->AddObserver(vtkCommand::ErrorEvent, errors.Command);
+  scene.Mapper->SetTolerancePixels(0.01); // ask for every leaf
+  AimCamera(FirstRenderer(scene.Window), 0, 0, 1.0);
+  for (int frame = 0; frame < 3; ++frame)
+  {
+    RenderUntilConverged(scene.Window, scene.Mapper);
+  }
+  EXPECT_EQ(errors.Errors, 1);
+  for (const unsigned n : scene.Mapper->GetDrawnNodes())
+  {
+    EXPECT_NE(n, victim);
+  }
+  EXPECT_TRUE(scene.Mapper->GetConverged());
+  ::unlink(corrupt.c_str());
+}
+
+TEST(Mapper, SeveralRenderersAndWindows)
+{
+  AtpScene scene;
+  vtkRenderer* left = FirstRenderer(scene.Window);
+  left->SetViewport(0, 0, 0.5, 1);
+  vtkNew<vtkRenderer> right;
+  right->SetViewport(0.5, 0, 1, 1);
+  right->AddActor(scene.Actor);
+  scene.Window->AddRenderer(right);
+  AimCamera(left, 0, 30, 1.0);
+  AimCamera(right, 180, -30, 3.0);
+  auto other = MakeWindow(200, 150);
+  FirstRenderer(other)->AddActor(scene.Actor);
+  AimCamera(FirstRenderer(other), 90, 0, 1.0);
+  for (int frame = 0; frame < 200; ++frame)
+  {
+    scene.Window->Render();
+    other->Render();
+  }
+  // Each drew: the second window's picture is not empty, and the first one's has both halves.
+  vtkSmartPointer<vtkImageData> first = Grab(scene.Window), second = Grab(other);
+  auto lit = [](vtkImageData* image, int x0, int x1) {
+    int count = 0;
+    int* extent = image->GetExtent();
+    for (int y = extent[2]; y <= extent[3]; ++y)
+    {
+      for (int x = x0; x < x1; ++x)
+      {
+        count += *static_cast<unsigned char*>(image->GetScalarPointer(x, y, 0)) > 0;
+      }
+    }
+    return count;
+  };
+  EXPECT_GT(lit(first, 0, Width / 2), 1000);
+  EXPECT_GT(lit(first, Width / 2, Width), 1000);
+  EXPECT_GT(lit(second, 0, 200), 1000);
+  other->Finalize();
+}
+
+TEST(Mapper, BoundsComeFromTheModelBeforeAnyRendering)
+{
+  AtpScene scene;
+  const atp::ModelFile model = atp::ModelFile::Open(TorusModel());
+  double bounds[6];
+  scene.Mapper->GetBounds(bounds);
+  for (int a = 0; a < 3; ++a)
+  {
+    EXPECT_EQ(bounds[2 * a], model.Header().BoxMin[a]);
+    EXPECT_EQ(bounds[2 * a + 1], model.Header().BoxMax[a]);
+  }
+}
+
+} // namespace
