@@ -90,8 +90,17 @@ CutSelector::CutSelector(const ModelFile& model, std::shared_ptr<const CutIndex>
   , IndexRef(std::move(index))
   , DecisionStamp(IndexRef->DiamondCount(), 0)
   , Decision(IndexRef->DiamondCount(), 0)
-  , MissingStamp(Model.NodeCount(), 0)
+  , NeedStamp(Model.NodeCount(), 0)
 {
+}
+
+void CutSelector::Need(std::uint32_t node)
+{
+  if (NeedStamp[node] != Stamp)
+  {
+    NeedStamp[node] = Stamp;
+    ((*Resident)(node) ? Out->Held : Out->Missing).push_back(node);
+  }
 }
 
 bool CutSelector::Refines(std::uint32_t diamond)
@@ -106,17 +115,20 @@ bool CutSelector::Refines(std::uint32_t diamond)
   bool refines = first.Children[0] >= 0 && ProjectedError(first, *View, Scale) > View->TolerancePixels;
   if (refines && *Resident)
   {
+    // The view wants this diamond refined: everything its refinement needs is asked for here,
+    // for members outside the view too, or a diamond below could wait on them forever.
     for (const std::uint32_t* m = index.MembersBegin(diamond); m != index.MembersEnd(diamond); ++m)
     {
       for (const std::int32_t child : Model.Node(*m).Children)
       {
-        refines = (*Resident)(std::uint32_t(child)) && refines;
+        Need(std::uint32_t(child));
+        refines = refines && (*Resident)(std::uint32_t(child));
       }
     }
     // Every diamond above must refine too, or some member of this one is not in the cut.
-    for (const std::uint32_t* p = index.ParentsBegin(diamond); refines && p != index.ParentsEnd(diamond); ++p)
+    for (const std::uint32_t* p = index.ParentsBegin(diamond); p != index.ParentsEnd(diamond); ++p)
     {
-      refines = Refines(*p);
+      refines = Refines(*p) && refines;
     }
   }
   DecisionStamp[diamond] = Stamp;
@@ -134,20 +146,14 @@ void CutSelector::Select(const ViewPoint& view, double errorScale, const Residen
   View = &view;
   Scale = errorScale;
   Resident = &resident;
+  Out = &out;
   if (++Stamp == 0)
   {
     std::fill(DecisionStamp.begin(), DecisionStamp.end(), 0);
-    std::fill(MissingStamp.begin(), MissingStamp.end(), 0);
+    std::fill(NeedStamp.begin(), NeedStamp.end(), 0);
     Stamp = 1;
   }
   const CutIndex& index = *IndexRef;
-  auto needs = [&](std::uint32_t node) {
-    if (MissingStamp[node] != Stamp)
-    {
-      MissingStamp[node] = Stamp;
-      (resident(node) ? out.Held : out.Missing).push_back(node);
-    }
-  };
 
   Stack.clear();
   for (std::uint32_t root = RootCount; root-- > 0;)
@@ -188,21 +194,10 @@ void CutSelector::Select(const ViewPoint& view, double errorScale, const Residen
     }
     if (resident && !resident(n))
     {
-      needs(n); // only roots get here: below them, nodes are reached through ready diamonds
+      Need(n); // only roots get here: below them, nodes are reached through ready diamonds
       continue;
     }
     out.Drawn.push_back(n);
-    // Wanted finer but waiting: ask for what the diamond's refinement lacks.
-    if (node.Children[0] >= 0 && resident && ProjectedError(node, view, errorScale) > view.TolerancePixels)
-    {
-      for (const std::uint32_t* m = index.MembersBegin(diamond); m != index.MembersEnd(diamond); ++m)
-      {
-        for (const std::int32_t child : Model.Node(*m).Children)
-        {
-          needs(std::uint32_t(child));
-        }
-      }
-    }
   }
 }
 

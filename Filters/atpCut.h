@@ -87,6 +87,8 @@ public:
 
 private:
   bool Refines(std::uint32_t diamond);
+  /// Records a patch the cut needs, in Missing or Held, once per call.
+  void Need(std::uint32_t node);
 
   const ModelFile& Model;
   std::shared_ptr<const CutIndex> IndexRef;
@@ -94,10 +96,11 @@ private:
   const ViewPoint* View = nullptr;
   double Scale = 1;
   const ResidentFunction* Resident = nullptr;
+  CutResult* Out = nullptr;
   std::uint32_t Stamp = 0;
   std::vector<std::uint32_t> DecisionStamp;
   std::vector<std::uint8_t> Decision;
-  std::vector<std::uint32_t> MissingStamp;
+  std::vector<std::uint32_t> NeedStamp;
   std::vector<std::uint32_t> Stack;
 };
 

@@ -103,6 +103,7 @@ double ImageError(vtkImageData* a, vtkImageData* b)
   vtkNew<vtkImageDifference> difference;
   difference->SetInputData(a);
   difference->SetImageData(b);
+  difference->SetThreshold(StrictIntensityThreshold);
   difference->Update();
   return difference->GetThresholdedError();
 }

@@ -32,7 +32,11 @@ void AimCamera(vtkRenderer* renderer, double azimuth, double elevation, double z
 int RenderUntilConverged(vtkRenderWindow* window, vtkATPMapper* mapper, int frames = 400);
 /// The window's current picture.
 vtkSmartPointer<vtkImageData> Grab(vtkRenderWindow* window);
-/// vtkImageDifference's thresholded error between two pictures (VTK's regression measure).
+/// Channel differences below this do not count (vtkImageDifference's default, 105 of 255, lets
+/// visibly smoothed surfaces pass; atp calibrate uses 32 too).
+constexpr int StrictIntensityThreshold = 32;
+/// vtkImageDifference's thresholded error between two pictures (VTK's regression measure),
+/// with the strict intensity threshold.
 double ImageError(vtkImageData* a, vtkImageData* b);
 /// vtkTesting's regression test of the window against Testing/Data/Baseline/<name>.png, with
 /// vtkTesting's error in `error`. A failed or missing baseline leaves the picture in /tmp
