@@ -1,0 +1,205 @@
+// vtkATPReader and vtkATPExtractCut in a VTK pipeline: bounds before data, clear errors for bad
+// files, and cuts as ordinary vtkPolyData.
+#include "atpModelFile.h"
+#include "vtkATPBuilder.h"
+#include "vtkATPExtractCut.h"
+#include "vtkATPModel.h"
+#include "vtkATPReader.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkCellData.h"
+#include "vtkCommand.h"
+#include "vtkErrorCode.h"
+#include "vtkFeatureEdges.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <iterator>
+#include <set>
+#include <unistd.h>
+
+namespace
+{
+std::string Temp(const std::string& name)
+{
+  return "/tmp/atp-test-extract-" + std::to_string(::getpid()) + "-" + name;
+}
+
+const std::string& Model()
+{
+  static const std::string path = [] {
+    vtkNew<vtkATPBuilder> builder;
+    builder->SetInputFileName(ATP_DATA_DIR "/bumpy-torus.ply");
+    builder->SetFileName(Temp("torus.atp").c_str());
+    builder->SetLeafCapacity(1000);
+    builder->SetPatchBudget(500);
+    EXPECT_EQ(builder->Build(), 1);
+    std::atexit([] { ::unlink(Temp("torus.atp").c_str()); });
+    return Temp("torus.atp");
+  }();
+  return path;
+}
+
+struct ErrorCounter
+{
+  vtkNew<vtkCallbackCommand> Command;
+  int Errors = 0;
+  ErrorCounter()
+  {
+    Command->SetClientData(this);
+    Command->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
+      ++static_cast<ErrorCounter*>(self)->Errors;
+    });
+  }
+};
+
+vtkIdType OpenEdgeCount(vtkPolyData* mesh)
+{
+  vtkNew<vtkFeatureEdges> edges;
+  edges->SetInputData(mesh);
+  edges->BoundaryEdgesOn();
+  edges->FeatureEdgesOff();
+  edges->NonManifoldEdgesOn();
+  edges->ManifoldEdgesOff();
+  edges->Update();
+  return edges->GetOutput()->GetNumberOfCells();
+}
+
+TEST(Reader, PublishesBoundsBeforeReadingData)
+{
+  vtkNew<vtkATPReader> reader;
+  reader->SetFileName(Model().c_str());
+  reader->UpdateInformation();
+  double bounds[6];
+  reader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::BOUNDS(), bounds);
+  const atp::ModelFile model = atp::ModelFile::Open(Model());
+  for (int a = 0; a < 3; ++a)
+  {
+    EXPECT_EQ(bounds[2 * a], model.Header().BoxMin[a]);
+    EXPECT_EQ(bounds[2 * a + 1], model.Header().BoxMax[a]);
+  }
+  reader->Update();
+  ASSERT_NE(reader->GetOutput()->GetModelFile(), nullptr);
+  EXPECT_EQ(reader->GetOutput()->GetModelFile()->NodeCount(), model.NodeCount());
+}
+
+TEST(Reader, BadFilesAreClearErrorsAndEmptyOutputs)
+{
+  std::ifstream in(Model(), std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string corruptNodes = bytes;
+  corruptNodes[600] = char(corruptNodes[600] ^ 1); // inside the node section
+  const std::pair<std::string, std::string> files[] = {
+    { "truncated", bytes.substr(0, bytes.size() / 2) },
+    { "foreign", "ply\nformat ascii 1.0\nend_header\n" },
+    { "empty", "" },
+    { "nodes", corruptNodes },
+  };
+  for (const auto& [name, content] : files)
+  {
+    const std::string path = Temp(name + ".atp");
+    std::ofstream(path, std::ios::binary) << content;
+    vtkNew<vtkATPReader> reader;
+    ErrorCounter errors;
+    reader->AddObserver(vtkCommand::ErrorEvent, errors.Command);
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    EXPECT_GE(errors.Errors, 1) << name;
+    EXPECT_EQ(reader->GetErrorCode(), vtkErrorCode::FileFormatError) << name;
+    EXPECT_EQ(reader->GetOutput()->GetModelFile(), nullptr) << name;
+    ::unlink(path.c_str());
+  }
+  vtkNew<vtkATPReader> missing;
+  ErrorCounter errors;
+  missing->AddObserver(vtkCommand::ErrorEvent, errors.Command);
+  missing->SetFileName(Temp("does-not-exist.atp").c_str());
+  missing->Update();
+  EXPECT_EQ(missing->GetErrorCode(), vtkErrorCode::CannotOpenFileError);
+  EXPECT_EQ(missing->GetOutput()->GetModelFile(), nullptr);
+}
+
+TEST(ExtractCut, FinestLevelIsTheInput)
+{
+  vtkNew<vtkATPReader> reader;
+  reader->SetFileName(Model().c_str());
+  vtkNew<vtkATPExtractCut> extract;
+  extract->SetInputConnection(reader->GetOutputPort());
+  extract->Update();
+  const atp::ModelFile model = atp::ModelFile::Open(Model());
+  vtkPolyData* mesh = extract->GetOutput();
+  EXPECT_EQ(std::uint64_t(mesh->GetNumberOfPolys()), model.Header().InputTriangles);
+  EXPECT_EQ(std::uint64_t(OpenEdgeCount(mesh)), model.Header().InputBoundaryEdges);
+  EXPECT_NE(mesh->GetPointData()->GetNormals(), nullptr);
+}
+
+TEST(ExtractCut, CameraCutsWithPatchIds)
+{
+  vtkNew<vtkATPReader> reader;
+  reader->SetFileName(Model().c_str());
+  vtkNew<vtkCamera> camera;
+  vtkNew<vtkATPExtractCut> extract;
+  extract->SetInputConnection(reader->GetOutputPort());
+  extract->SetCamera(camera);
+  extract->PatchIdsOn();
+  extract->FrustumCullingOff();
+  const atp::ModelFile model = atp::ModelFile::Open(Model());
+  vtkIdType previous = 0;
+  for (const double distance : { 60.0, 12.0, 3.0 })
+  {
+    camera->SetPosition(0, 0, distance); // the camera's change alone updates the filter
+    extract->Update();
+    vtkPolyData* mesh = extract->GetOutput();
+    EXPECT_GT(mesh->GetNumberOfPolys(), previous) << "closer must be finer";
+    previous = mesh->GetNumberOfPolys();
+    // A whole surface: no open edges but the input's boundary (which simplification may
+    // shorten along itself, never lengthen).
+    EXPECT_LE(std::uint64_t(OpenEdgeCount(mesh)), model.Header().InputBoundaryEdges);
+    auto* ids = vtkIdTypeArray::SafeDownCast(mesh->GetCellData()->GetArray("PatchId"));
+    ASSERT_NE(ids, nullptr);
+    std::set<vtkIdType> patches;
+    for (vtkIdType t = 0; t < ids->GetNumberOfValues(); ++t)
+    {
+      ASSERT_LT(std::size_t(ids->GetValue(t)), model.NodeCount());
+      patches.insert(ids->GetValue(t));
+    }
+    EXPECT_EQ(vtkIdType(patches.size()), extract->GetPatchCount());
+  }
+  // Looking away from the model: the frustum leaves nothing.
+  extract->FrustumCullingOn();
+  camera->SetPosition(0, 0, 30);
+  camera->SetFocalPoint(0, 0, 60);
+  extract->Update();
+  EXPECT_EQ(extract->GetOutput()->GetNumberOfPolys(), 0);
+}
+
+TEST(ExtractCut, CorruptPatchIsAnError)
+{
+  const atp::ModelFile model = atp::ModelFile::Open(Model());
+  std::ifstream in(Model(), std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t offset = model.Header().PatchSectionOffset + model.Node(0).PatchOffset + 40;
+  bytes[offset] = char(bytes[offset] ^ 0x10);
+  const std::string path = Temp("corrupt-patch.atp");
+  std::ofstream(path, std::ios::binary) << bytes;
+  vtkNew<vtkATPReader> reader;
+  reader->SetFileName(path.c_str());
+  vtkNew<vtkATPExtractCut> extract;
+  extract->SetInputConnection(reader->GetOutputPort());
+  extract->SetLevel(0);
+  ErrorCounter errors;
+  extract->AddObserver(vtkCommand::ErrorEvent, errors.Command);
+  extract->Update();
+  EXPECT_GE(errors.Errors, 1);
+  EXPECT_EQ(extract->GetOutput()->GetNumberOfPolys(), 0);
+  ::unlink(path.c_str());
+}
+
+} // namespace
