@@ -4,6 +4,7 @@
 
 #include "atpChecksum.h"
 #include "atpPatchCodec.h"
+#include "atpResidentPages.h"
 
 #include <xxhash.h>
 
@@ -469,6 +470,11 @@ void ModelFile::DecodePatch(std::size_t i, PatchMesh& out) const
 {
   CheckPatch(i);
   atp::DecodePatch(PatchData(i), NodeArray[i].PatchBytes, PatchGrid(), out);
+}
+
+void ModelFile::ReleasePatchPages(std::size_t i) const
+{
+  ReleaseResidentPages(PatchData(i), NodeArray[i].PatchBytes);
 }
 
 std::vector<std::string> ModelFile::Verify() const

@@ -53,6 +53,9 @@ public:
   /// CheckPatch, then decodes node i's patch into `out` (reusing its capacity). Throws
   /// ModelError or PatchFormatError.
   void DecodePatch(std::size_t i, PatchMesh& out) const;
+  /// Drops the whole pages of node i's patch from the process's resident memory: they stay in
+  /// the kernel's page cache, so a renderer's memory follows its caches, not the file's size.
+  void ReleasePatchPages(std::size_t i) const;
   /// Full verification: the patch section's checksum and every patch's. Returns the problems
   /// found (empty: valid), at most the first 100 patches listed.
   std::vector<std::string> Verify() const;

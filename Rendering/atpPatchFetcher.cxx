@@ -62,6 +62,7 @@ RenderPatch PatchFetcher::DecodeNow(std::uint32_t node) const
   {
     PatchMesh mesh;
     Model->DecodePatch(node, mesh);
+    Model->ReleasePatchPages(node);
     return MakeRenderPatch(mesh, node);
   }
   catch (const std::exception& e)
