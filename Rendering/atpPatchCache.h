@@ -31,7 +31,11 @@ public:
   void SetBudget(std::size_t bytes) { Budget = bytes; }
   std::size_t GetBudget() const { return Budget; }
   /// Starts a new frame: what the previous frames used may be evicted again.
-  void NewFrame() { ++Frame; }
+  void NewFrame()
+  {
+    ++Frame;
+    PinnedBytes = 0;
+  }
 
   bool Contains(std::uint32_t key) const { return Entries.count(key) != 0; }
 
@@ -44,7 +48,11 @@ public:
       return nullptr;
     }
     Order.splice(Order.begin(), Order, found->second);
-    found->second->LastFrame = Frame;
+    if (found->second->LastFrame != Frame)
+    {
+      found->second->LastFrame = Frame;
+      PinnedBytes += found->second->Bytes;
+    }
     return &found->second->Item;
   }
 
@@ -52,15 +60,11 @@ public:
   /// frame. False (and nothing evicted) when even that cannot make the room.
   bool MakeRoom(std::size_t bytes)
   {
-    std::size_t evictable = 0;
-    for (const Entry& e : Order)
-    {
-      evictable += e.LastFrame == Frame ? 0 : e.Bytes;
-    }
-    if (Bytes - evictable + bytes > Budget)
+    if (PinnedBytes + bytes > Budget)
     {
       return false;
     }
+    // Pinned entries were moved to the front when used: the back holds the evictable ones.
     for (auto it = Order.end(); Bytes + bytes > Budget && it != Order.begin();)
     {
       --it;
@@ -82,6 +86,7 @@ public:
     Order.push_front(Entry{ key, std::move(value), bytes, Frame });
     Entries[key] = Order.begin();
     Bytes += bytes;
+    PinnedBytes += bytes;
     return Order.front().Item;
   }
 
@@ -94,6 +99,7 @@ public:
     Order.clear();
     Entries.clear();
     Bytes = 0;
+    PinnedBytes = 0;
   }
 
   std::size_t GetBytes() const { return Bytes; }
@@ -114,6 +120,7 @@ private:
   std::unordered_map<std::uint32_t, typename std::list<Entry>::iterator> Entries;
   std::size_t Budget = std::size_t(512) << 20;
   std::size_t Bytes = 0;
+  std::size_t PinnedBytes = 0; ///< of the entries used by this frame
   std::uint64_t Frame = 1;
   std::uint64_t Evictions = 0;
 };

@@ -1,13 +1,13 @@
 // The view-dependent cut: culling primitives, the diamond index, and the residency-aware cut
 // that the renderer relies on (conforming while patches load, converging to the full cut).
 #include "MeshEdges.h"
+#include "TestModel.h"
 
 #include "atpCameraView.h"
 #include "atpCut.h"
 #include "atpCutIndex.h"
 #include "atpModelFile.h"
 #include "atpTetra.h"
-#include "vtkATPBuilder.h"
 
 #include "vtkCamera.h"
 #include "vtkNew.h"
@@ -22,22 +22,6 @@
 namespace
 {
 using namespace atp::test;
-
-const std::string& Model()
-{
-  static const std::string path = [] {
-    const std::string model = "/tmp/atp-test-cut-" + std::to_string(::getpid()) + ".atp";
-    vtkNew<vtkATPBuilder> builder;
-    builder->SetInputFileName(ATP_DATA_DIR "/bumpy-torus.ply");
-    builder->SetFileName(model.c_str());
-    builder->SetLeafCapacity(1000);
-    builder->SetPatchBudget(500);
-    EXPECT_EQ(builder->Build(), 1);
-    std::atexit([] { ::unlink(("/tmp/atp-test-cut-" + std::to_string(::getpid()) + ".atp").c_str()); });
-    return model;
-  }();
-  return path;
-}
 
 atp::NormalCone Cone(double x, double y, double z, double halfAngleDegrees)
 {
@@ -110,7 +94,7 @@ TEST(Cut, FrustumTestUsesPlanes)
 
 TEST(Cut, IndexGroupsWholeDiamondsAndSaturatesCones)
 {
-  const atp::ModelFile model = atp::ModelFile::Open(Model());
+  const atp::ModelFile model = atp::ModelFile::Open(TorusModel());
   const atp::CutIndex index(model);
   for (std::uint32_t n = 0; n < model.NodeCount(); ++n)
   {
@@ -156,7 +140,7 @@ atp::ViewPoint RandomView(std::mt19937& random, bool culling)
 
 TEST(Cut, WhileLoadingTheCutStaysCrackFreeAndConvergesToTheFullCut)
 {
-  const atp::ModelFile model = atp::ModelFile::Open(Model());
+  const atp::ModelFile model = atp::ModelFile::Open(TorusModel());
   auto index = std::make_shared<const atp::CutIndex>(model);
   atp::CutSelector selector(model, index);
   const atp::PatchMesh finest = atp::ExtractCut(model, atp::SelectLevel(model, 64));
@@ -215,7 +199,7 @@ TEST(Cut, WhileLoadingTheCutStaysCrackFreeAndConvergesToTheFullCut)
 
 TEST(Cut, CullingDropsOnlyInvisiblePatches)
 {
-  const atp::ModelFile model = atp::ModelFile::Open(Model());
+  const atp::ModelFile model = atp::ModelFile::Open(TorusModel());
   std::mt19937 random(9);
   std::size_t culledSome = 0;
   for (int v = 0; v < 20; ++v)

@@ -1,7 +1,8 @@
 // vtkATPReader and vtkATPExtractCut in a VTK pipeline: bounds before data, clear errors for bad
 // files, and cuts as ordinary vtkPolyData.
+#include "TestModel.h"
+
 #include "atpModelFile.h"
-#include "vtkATPBuilder.h"
 #include "vtkATPExtractCut.h"
 #include "vtkATPModel.h"
 #include "vtkATPReader.h"
@@ -28,38 +29,7 @@
 
 namespace
 {
-std::string Temp(const std::string& name)
-{
-  return "/tmp/atp-test-extract-" + std::to_string(::getpid()) + "-" + name;
-}
-
-const std::string& Model()
-{
-  static const std::string path = [] {
-    vtkNew<vtkATPBuilder> builder;
-    builder->SetInputFileName(ATP_DATA_DIR "/bumpy-torus.ply");
-    builder->SetFileName(Temp("torus.atp").c_str());
-    builder->SetLeafCapacity(1000);
-    builder->SetPatchBudget(500);
-    EXPECT_EQ(builder->Build(), 1);
-    std::atexit([] { ::unlink(Temp("torus.atp").c_str()); });
-    return Temp("torus.atp");
-  }();
-  return path;
-}
-
-struct ErrorCounter
-{
-  vtkNew<vtkCallbackCommand> Command;
-  int Errors = 0;
-  ErrorCounter()
-  {
-    Command->SetClientData(this);
-    Command->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
-      ++static_cast<ErrorCounter*>(self)->Errors;
-    });
-  }
-};
+using namespace atp::test;
 
 vtkIdType OpenEdgeCount(vtkPolyData* mesh)
 {
@@ -76,11 +46,11 @@ vtkIdType OpenEdgeCount(vtkPolyData* mesh)
 TEST(Reader, PublishesBoundsBeforeReadingData)
 {
   vtkNew<vtkATPReader> reader;
-  reader->SetFileName(Model().c_str());
+  reader->SetFileName(TorusModel().c_str());
   reader->UpdateInformation();
   double bounds[6];
   reader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::BOUNDS(), bounds);
-  const atp::ModelFile model = atp::ModelFile::Open(Model());
+  const atp::ModelFile model = atp::ModelFile::Open(TorusModel());
   for (int a = 0; a < 3; ++a)
   {
     EXPECT_EQ(bounds[2 * a], model.Header().BoxMin[a]);
@@ -93,7 +63,7 @@ TEST(Reader, PublishesBoundsBeforeReadingData)
 
 TEST(Reader, BadFilesAreClearErrorsAndEmptyOutputs)
 {
-  std::ifstream in(Model(), std::ios::binary);
+  std::ifstream in(TorusModel(), std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::string corruptNodes = bytes;
   corruptNodes[600] = char(corruptNodes[600] ^ 1); // inside the node section
@@ -105,7 +75,7 @@ TEST(Reader, BadFilesAreClearErrorsAndEmptyOutputs)
   };
   for (const auto& [name, content] : files)
   {
-    const std::string path = Temp(name + ".atp");
+    const std::string path = TempPath(name + ".atp");
     std::ofstream(path, std::ios::binary) << content;
     vtkNew<vtkATPReader> reader;
     ErrorCounter errors;
@@ -120,7 +90,7 @@ TEST(Reader, BadFilesAreClearErrorsAndEmptyOutputs)
   vtkNew<vtkATPReader> missing;
   ErrorCounter errors;
   missing->AddObserver(vtkCommand::ErrorEvent, errors.Command);
-  missing->SetFileName(Temp("does-not-exist.atp").c_str());
+  missing->SetFileName(TempPath("does-not-exist.atp").c_str());
   missing->Update();
   EXPECT_EQ(missing->GetErrorCode(), vtkErrorCode::CannotOpenFileError);
   EXPECT_EQ(missing->GetOutput()->GetModelFile(), nullptr);
@@ -129,11 +99,11 @@ TEST(Reader, BadFilesAreClearErrorsAndEmptyOutputs)
 TEST(ExtractCut, FinestLevelIsTheInput)
 {
   vtkNew<vtkATPReader> reader;
-  reader->SetFileName(Model().c_str());
+  reader->SetFileName(TorusModel().c_str());
   vtkNew<vtkATPExtractCut> extract;
   extract->SetInputConnection(reader->GetOutputPort());
   extract->Update();
-  const atp::ModelFile model = atp::ModelFile::Open(Model());
+  const atp::ModelFile model = atp::ModelFile::Open(TorusModel());
   vtkPolyData* mesh = extract->GetOutput();
   EXPECT_EQ(std::uint64_t(mesh->GetNumberOfPolys()), model.Header().InputTriangles);
   EXPECT_EQ(std::uint64_t(OpenEdgeCount(mesh)), model.Header().InputBoundaryEdges);
@@ -143,14 +113,14 @@ TEST(ExtractCut, FinestLevelIsTheInput)
 TEST(ExtractCut, CameraCutsWithPatchIds)
 {
   vtkNew<vtkATPReader> reader;
-  reader->SetFileName(Model().c_str());
+  reader->SetFileName(TorusModel().c_str());
   vtkNew<vtkCamera> camera;
   vtkNew<vtkATPExtractCut> extract;
   extract->SetInputConnection(reader->GetOutputPort());
   extract->SetCamera(camera);
   extract->PatchIdsOn();
   extract->FrustumCullingOff();
-  const atp::ModelFile model = atp::ModelFile::Open(Model());
+  const atp::ModelFile model = atp::ModelFile::Open(TorusModel());
   vtkIdType previous = 0;
   for (const double distance : { 60.0, 12.0, 3.0 })
   {
@@ -182,12 +152,12 @@ TEST(ExtractCut, CameraCutsWithPatchIds)
 
 TEST(ExtractCut, CorruptPatchIsAnError)
 {
-  const atp::ModelFile model = atp::ModelFile::Open(Model());
-  std::ifstream in(Model(), std::ios::binary);
+  const atp::ModelFile model = atp::ModelFile::Open(TorusModel());
+  std::ifstream in(TorusModel(), std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::size_t offset = model.Header().PatchSectionOffset + model.Node(0).PatchOffset + 40;
   bytes[offset] = char(bytes[offset] ^ 0x10);
-  const std::string path = Temp("corrupt-patch.atp");
+  const std::string path = TempPath("corrupt-patch.atp");
   std::ofstream(path, std::ios::binary) << bytes;
   vtkNew<vtkATPReader> reader;
   reader->SetFileName(path.c_str());

@@ -1,6 +1,5 @@
 #include "RenderingFixture.h"
 
-#include "vtkATPBuilder.h"
 #include "vtkATPMapper.h"
 
 #include "vtkCamera.h"
@@ -22,30 +21,6 @@ namespace atp
 {
 namespace test
 {
-
-std::string TempPath(const std::string& name)
-{
-  return "/tmp/atp-test-rendering-" + std::to_string(::getpid()) + "-" + name;
-}
-
-const std::string& TorusModel()
-{
-  static const std::string path = [] {
-    const std::string model = TempPath("torus.atp");
-    vtkNew<vtkATPBuilder> builder;
-    builder->SetInputFileName(ATP_DATA_DIR "/bumpy-torus.ply");
-    builder->SetFileName(model.c_str());
-    builder->SetLeafCapacity(1000);
-    builder->SetPatchBudget(500);
-    if (!builder->Build())
-    {
-      throw std::runtime_error("the test model did not build");
-    }
-    std::atexit([] { ::unlink(TempPath("torus.atp").c_str()); });
-    return model;
-  }();
-  return path;
-}
 
 vtkSmartPointer<vtkRenderWindow> MakeWindow(int width, int height)
 {
@@ -117,7 +92,6 @@ bool MatchesBaseline(vtkRenderWindow* window, const std::string& name, double th
   testing->AddArgument("-T");
   testing->AddArgument("/tmp");
   testing->SetRenderWindow(window);
-  testing->FrontBufferOff();
   const int result = testing->RegressionTest(threshold);
   error = testing->GetImageDifference();
   return result == vtkTesting::PASSED;

@@ -3,6 +3,8 @@
 #ifndef atpRenderingFixture_h
 #define atpRenderingFixture_h
 
+#include "TestModel.h"
+
 #include "vtkSmartPointer.h"
 
 #include <string>
@@ -16,12 +18,6 @@ namespace atp
 {
 namespace test
 {
-
-/// Builds (once per process) a model of Data/bumpy-torus.ply with small patches, so that the
-/// tests see many levels; returns its path.
-const std::string& TorusModel();
-/// A temporary path for this process.
-std::string TempPath(const std::string& name);
 
 /// An offscreen window of width x height with one renderer, black background.
 vtkSmartPointer<vtkRenderWindow> MakeWindow(int width, int height);

@@ -83,19 +83,6 @@ vtkSmartPointer<vtkImageData> FullResolution(double azimuth, double elevation, d
   return Grab(window);
 }
 
-struct ErrorCounter
-{
-  vtkNew<vtkCallbackCommand> Command;
-  int Errors = 0;
-  ErrorCounter()
-  {
-    Command->SetClientData(this);
-    Command->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
-      ++static_cast<ErrorCounter*>(self)->Errors;
-    });
-  }
-};
-
 TEST(Mapper, MatchesTheFullResolutionMapperAtOnePixel)
 {
   struct View

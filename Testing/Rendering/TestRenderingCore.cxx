@@ -1,12 +1,13 @@
 // The renderer's plain C++ parts, without a GPU: the cache policy, background decoding and
 // speculative prefetching. Run under ThreadSanitizer too (ATP_SANITIZE=thread).
+#include "TestModel.h"
+
 #include "atpCut.h"
 #include "atpModelFile.h"
 #include "atpPatchCache.h"
 #include "atpPatchFetcher.h"
 #include "atpPrefetcher.h"
 #include "atpRenderPatch.h"
-#include "vtkATPBuilder.h"
 
 #include "vtkNew.h"
 
@@ -23,25 +24,7 @@
 
 namespace
 {
-std::string Temp(const std::string& name)
-{
-  return "/tmp/atp-test-rendering-core-" + std::to_string(::getpid()) + "-" + name;
-}
-
-const std::string& Model()
-{
-  static const std::string path = [] {
-    vtkNew<vtkATPBuilder> builder;
-    builder->SetInputFileName(ATP_DATA_DIR "/bumpy-torus.ply");
-    builder->SetFileName(Temp("torus.atp").c_str());
-    builder->SetLeafCapacity(1000);
-    builder->SetPatchBudget(500);
-    EXPECT_EQ(builder->Build(), 1);
-    std::atexit([] { ::unlink(Temp("torus.atp").c_str()); });
-    return Temp("torus.atp");
-  }();
-  return path;
-}
+using namespace atp::test;
 
 TEST(PatchCache, EvictsLeastRecentlyUsedButNeverThisFramesPatches)
 {
@@ -76,7 +59,7 @@ TEST(PatchCache, EvictsLeastRecentlyUsedButNeverThisFramesPatches)
 
 TEST(RenderPatch, LayoutMatchesTheDecodedPatch)
 {
-  const atp::ModelFile model = atp::ModelFile::Open(Model());
+  const atp::ModelFile model = atp::ModelFile::Open(TorusModel());
   atp::PatchMesh mesh;
   model.DecodePatch(0, mesh);
   const atp::RenderPatch patch = atp::MakeRenderPatch(mesh, 0);
@@ -102,7 +85,7 @@ TEST(RenderPatch, LayoutMatchesTheDecodedPatch)
 
 TEST(PatchFetcher, DecodesWhatIsAskedOnceAndReportsCorruption)
 {
-  auto model = std::make_shared<const atp::ModelFile>(atp::ModelFile::Open(Model()));
+  auto model = std::make_shared<const atp::ModelFile>(atp::ModelFile::Open(TorusModel()));
   atp::PatchFetcher fetcher(model, 3);
   std::vector<std::uint32_t> all(model->NodeCount());
   for (std::uint32_t n = 0; n < all.size(); ++n)
@@ -137,24 +120,24 @@ TEST(PatchFetcher, DecodesWhatIsAskedOnceAndReportsCorruption)
   EXPECT_GE(fetcher.DecodedPatches(), all.size());
 
   // A corrupt patch comes back with an error naming it.
-  std::ifstream in(Model(), std::ios::binary);
+  std::ifstream in(TorusModel(), std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::size_t offset = model->Header().PatchSectionOffset + model->Node(7).PatchOffset + 20;
   bytes[offset] = char(bytes[offset] ^ 0x33);
-  std::ofstream(Temp("corrupt.atp"), std::ios::binary) << bytes;
-  auto corrupt = std::make_shared<const atp::ModelFile>(atp::ModelFile::Open(Temp("corrupt.atp")));
+  std::ofstream(TempPath("corrupt.atp"), std::ios::binary) << bytes;
+  auto corrupt = std::make_shared<const atp::ModelFile>(atp::ModelFile::Open(TempPath("corrupt.atp")));
   atp::PatchFetcher broken(corrupt, 1);
   EXPECT_NE(broken.DecodeNow(7).Error.find("node 7"), std::string::npos);
   EXPECT_TRUE(broken.DecodeNow(6).Error.empty());
-  ::unlink(Temp("corrupt.atp").c_str());
+  ::unlink(TempPath("corrupt.atp").c_str());
 }
 
 TEST(Prefetcher, PredictsHalfASecondAheadAndAdvisesMissingPages)
 {
-  auto model = std::make_shared<const atp::ModelFile>(atp::ModelFile::Open(Model()));
+  auto model = std::make_shared<const atp::ModelFile>(atp::ModelFile::Open(TorusModel()));
   auto index = std::make_shared<const atp::CutIndex>(*model);
   // Drop the model's pages from the page cache, so the prediction finds pages to advise.
-  const int fd = ::open(Model().c_str(), O_RDONLY);
+  const int fd = ::open(TorusModel().c_str(), O_RDONLY);
   ASSERT_GE(fd, 0);
   ::fdatasync(fd);
   ::posix_fadvise(fd, 0, 0, POSIX_FADV_DONTNEED);
