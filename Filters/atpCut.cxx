@@ -10,23 +10,34 @@
 namespace atp
 {
 
-double ProjectedError(const ModelNode& node, const ViewPoint& view, double errorScale)
+namespace
+{
+/// Pixels per object unit at distance one (perspective) or anywhere (parallel).
+double PixelsPerUnit(const ViewPoint& view)
+{
+  return view.Parallel ? view.ViewportHeight / (2 * view.ParallelScale)
+                       : view.ViewportHeight / (2 * std::tan(view.ViewAngleDegrees * M_PI / 360));
+}
+
+/// ProjectedError with `factor` = errorScale * PixelsPerUnit(view), computed once per cut.
+double ScreenError(const ModelNode& node, const ViewPoint& view, double factor)
 {
   if (view.Parallel)
   {
-    return errorScale * node.SaturatedError * view.ViewportHeight / (2 * view.ParallelScale);
+    return factor * node.SaturatedError;
   }
   const float* s = node.SaturatedSphere;
   const double distance = std::sqrt((s[0] - view.Eye[0]) * (s[0] - view.Eye[0]) +
                             (s[1] - view.Eye[1]) * (s[1] - view.Eye[1]) +
                             (s[2] - view.Eye[2]) * (s[2] - view.Eye[2])) - s[3];
-  if (distance <= 0)
-  {
-    return std::numeric_limits<double>::infinity();
-  }
-  const double pixelsPerUnitAtDistanceOne =
-    view.ViewportHeight / (2 * std::tan(view.ViewAngleDegrees * M_PI / 360));
-  return errorScale * node.SaturatedError * pixelsPerUnitAtDistanceOne / distance;
+  return distance <= 0 ? std::numeric_limits<double>::infinity()
+                       : factor * node.SaturatedError / distance;
+}
+} // namespace
+
+double ProjectedError(const ModelNode& node, const ViewPoint& view, double errorScale)
+{
+  return ScreenError(node, view, errorScale * PixelsPerUnit(view));
 }
 
 bool OutsideFrustum(const float sphere[4], const ViewPoint& view)
@@ -112,7 +123,7 @@ bool CutSelector::Refines(std::uint32_t diamond)
   const CutIndex& index = *IndexRef;
   const ModelNode& first = Model.Node(*index.MembersBegin(diamond));
   // Saturated errors and spheres are equal over the diamond: one member decides for all.
-  bool refines = first.Children[0] >= 0 && ProjectedError(first, *View, Scale) > View->TolerancePixels;
+  bool refines = first.Children[0] >= 0 && ScreenError(first, *View, ErrorFactor) > View->TolerancePixels;
   if (refines && *Resident)
   {
     // The view wants this diamond refined: everything its refinement needs is asked for here,
@@ -144,7 +155,7 @@ void CutSelector::Select(const ViewPoint& view, double errorScale, const Residen
   out.Held.clear();
   out.Visited = 0;
   View = &view;
-  Scale = errorScale;
+  ErrorFactor = errorScale * PixelsPerUnit(view);
   Resident = &resident;
   Out = &out;
   if (++Stamp == 0)

@@ -94,7 +94,7 @@ private:
   std::shared_ptr<const CutIndex> IndexRef;
   // Per call: the view, and a memo of refinement decisions per diamond, valid where stamped.
   const ViewPoint* View = nullptr;
-  double Scale = 1;
+  double ErrorFactor = 1; ///< error scale times pixels per unit
   const ResidentFunction* Resident = nullptr;
   CutResult* Out = nullptr;
   std::uint32_t Stamp = 0;

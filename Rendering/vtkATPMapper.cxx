@@ -23,7 +23,6 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLRenderer.h"
 #include "vtkOpenGLShaderCache.h"
-#include "vtkOpenGLState.h"
 #include "vtkOpenGLVertexArrayObject.h"
 #include "vtkProperty.h"
 #include "vtkShaderProgram.h"
@@ -34,7 +33,6 @@
 #include <chrono>
 #include <map>
 #include <thread>
-#include <unordered_set>
 
 vtkStandardNewMacro(vtkATPMapper);
 
@@ -51,6 +49,7 @@ double SecondsSince(Clock::time_point start)
 /// program it was last drawn with.
 struct GpuPatch
 {
+  std::uint32_t Node = 0;
   vtkSmartPointer<vtkOpenGLBufferObject> Vertices;
   vtkSmartPointer<vtkOpenGLBufferObject> Indices;
   vtkSmartPointer<vtkOpenGLVertexArrayObject> Layout;
@@ -69,10 +68,15 @@ struct GpuPatch
   }
 };
 
-/// What one render window holds: GPU resources live in its context.
+/// What one render window holds: GPU resources live in its context. OnGpu mirrors the cache's
+/// keys as a flat array, so the cut's residency test costs one load.
 struct WindowCache
 {
-  atp::PatchCache<GpuPatch> Patches{ [](GpuPatch& p) { p.Release(); } };
+  std::vector<std::uint8_t> OnGpu;
+  atp::PatchCache<GpuPatch> Patches{ [this](GpuPatch& p) {
+    p.Release();
+    OnGpu[p.Node] = 0;
+  } };
   std::uint64_t ModelGeneration = 0;
 };
 } // namespace
@@ -85,7 +89,7 @@ struct vtkATPMapper::Internals
   std::unique_ptr<atp::CutSelector> Selector;
   std::unique_ptr<atp::PatchFetcher> Fetcher;
   std::unique_ptr<atp::Prefetcher> Prefetch;
-  std::unordered_set<std::uint32_t> Corrupt; ///< reported once, never drawn
+  std::vector<std::uint8_t> Corrupt; ///< per node: reported once, never drawn
   std::map<vtkWindow*, std::unique_ptr<WindowCache>> Windows;
   atp::CutResult Cut;
   std::vector<atp::RenderPatch> Arrived;
@@ -94,7 +98,15 @@ struct vtkATPMapper::Internals
   vtkNew<vtkMatrix4x4> ModelToDevice, ModelToView;
   vtkNew<vtkMatrix3x3> NormalMatrix;
 
-  void Reset() { Selector.reset(); Prefetch.reset(); Fetcher.reset(); Index.reset(); Model.reset(); Corrupt.clear(); }
+  void Reset()
+  {
+    Selector.reset();
+    Prefetch.reset();
+    Fetcher.reset();
+    Index.reset();
+    Model.reset();
+    Corrupt.clear();
+  }
 };
 
 vtkATPMapper::vtkATPMapper()
@@ -102,15 +114,9 @@ vtkATPMapper::vtkATPMapper()
 {
 }
 
-vtkATPMapper::~vtkATPMapper()
-{
-  // GPU resources are gone with their windows' contexts by now (ReleaseGraphicsResources);
-  // what is left is only forgotten, never freed in a foreign context.
-  for (auto& w : this->Impl->Windows)
-  {
-    w.second->Patches.SetBudget(0);
-  }
-}
+// Windows release what they hold through ReleaseGraphicsResources before they go; buffer
+// objects still alive here are deleted by their own destructors, as VTK's mappers do.
+vtkATPMapper::~vtkATPMapper() = default;
 
 void vtkATPMapper::SetInputData(vtkATPModel* model)
 {
@@ -178,6 +184,7 @@ namespace
 GpuPatch Upload(const atp::RenderPatch& patch)
 {
   GpuPatch gpu;
+  gpu.Node = patch.Node;
   gpu.Vertices = vtkSmartPointer<vtkOpenGLBufferObject>::New();
   gpu.Indices = vtkSmartPointer<vtkOpenGLBufferObject>::New();
   gpu.Layout = vtkSmartPointer<vtkOpenGLVertexArrayObject>::New();
@@ -240,6 +247,7 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
       return;
     }
     in.Model = model;
+    in.Corrupt.assign(model->NodeCount(), 0);
     ++in.ModelGeneration;
     in.Selector.reset(new atp::CutSelector(*model, in.Index));
     const int threads = this->DecodeThreads > 0
@@ -267,6 +275,7 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   if (cache.ModelGeneration != in.ModelGeneration)
   {
     cache.Patches.Clear();
+    cache.OnGpu.assign(model->NodeCount(), 0);
     cache.ModelGeneration = in.ModelGeneration;
   }
   cache.Patches.SetBudget(std::size_t(this->CacheBudget));
@@ -282,8 +291,9 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   auto store = [&](const atp::RenderPatch& patch, bool mustFit) {
     if (!patch.Error.empty())
     {
-      if (in.Corrupt.insert(patch.Node).second)
+      if (!in.Corrupt[patch.Node])
       {
+        in.Corrupt[patch.Node] = 1;
         vtkErrorMacro(<< patch.Error);
       }
       return;
@@ -293,6 +303,7 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
       return; // no room: the region stays coarser, and the patch is asked for again later
     }
     cache.Patches.Insert(patch.Node, Upload(patch), patch.Bytes());
+    cache.OnGpu[patch.Node] = 1;
     ++stats.Uploads;
     stats.UploadBytes += patch.Bytes();
   };
@@ -311,8 +322,7 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     this->BackfaceCulling);
   const double errorScale = model->Header().ErrorScale;
   const atp::ResidentFunction resident = [&](std::uint32_t node) {
-    return model->Node(node).TriangleCount == 0 ||
-      (cache.Patches.Contains(node) && !in.Corrupt.count(node));
+    return cache.OnGpu[node] || model->Node(node).TriangleCount == 0;
   };
   const Clock::time_point cutStart = Clock::now();
   in.Selector->Select(view, errorScale, resident, in.Cut);
@@ -320,7 +330,7 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   bool rootsLoaded = false;
   for (const std::uint32_t node : in.Cut.Missing)
   {
-    if (node < atp::RootCount && !in.Corrupt.count(node))
+    if (node < atp::RootCount && !in.Corrupt[node])
     {
       store(in.Fetcher->DecodeNow(node), true);
       rootsLoaded = true;
@@ -335,7 +345,7 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   wanted.reserve(in.Cut.Missing.size());
   for (const std::uint32_t node : in.Cut.Missing)
   {
-    if (!in.Corrupt.count(node))
+    if (!in.Corrupt[node])
     {
       wanted.push_back(node);
     }
@@ -403,7 +413,6 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   const int colorSource = this->PatchColoring ? 2 : (colors && this->ScalarVisibility ? 1 : 0);
   program->SetUniformi("colorSource", colorSource);
 
-  vtkOpenGLState* state = window->GetState();
   const int representation = property->GetRepresentation();
   if (representation != VTK_SURFACE)
   {
@@ -442,7 +451,6 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   {
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   }
-  (void)state;
   stats.DrawSeconds = SecondsSince(drawStart);
 
   stats.CacheHits = stats.Patches >= stats.Uploads ? stats.Patches - stats.Uploads : 0;
