@@ -31,6 +31,10 @@ RenderPatch MakeRenderPatch(const PatchMesh& mesh, std::uint32_t node)
       std::memcpy(out + RenderPatchColorOffset, &mesh.Colors[4 * v], 4);
     }
   }
+  if (mesh.Indices.empty())
+  {
+    return patch; // an empty patch: nothing to copy (and no buffers to copy from)
+  }
   if (patch.ShortIndices)
   {
     std::vector<std::uint16_t> shorts(mesh.Indices.begin(), mesh.Indices.end());
