@@ -19,7 +19,9 @@ double PixelsPerUnit(const ViewPoint& view)
                        : view.ViewportHeight / (2 * std::tan(view.ViewAngleDegrees * M_PI / 360));
 }
 
-/// ProjectedError with `factor` = errorScale * PixelsPerUnit(view), computed once per cut.
+/// Pixels that the saturated error covers on screen at the nearest point of the saturated
+/// sphere, with `factor` = error scale * PixelsPerUnit(view); infinite when the eye is inside
+/// the sphere, so nodes around the viewer always refine.
 double ScreenError(const ModelNode& node, const ViewPoint& view, double factor)
 {
   if (view.Parallel)
@@ -34,11 +36,6 @@ double ScreenError(const ModelNode& node, const ViewPoint& view, double factor)
                        : factor * node.SaturatedError / distance;
 }
 } // namespace
-
-double ProjectedError(const ModelNode& node, const ViewPoint& view, double errorScale)
-{
-  return ScreenError(node, view, errorScale * PixelsPerUnit(view));
-}
 
 bool OutsideFrustum(const float sphere[4], const ViewPoint& view)
 {

@@ -40,12 +40,6 @@ struct ViewPoint
   bool BackfaceCulling = false;
 };
 
-/// Pixels that an object-space error at the nearest point of the node's saturated sphere
-/// covers on screen (scaled by `errorScale`); infinite when the eye is inside the sphere, so
-/// nodes around the viewer always refine.
-VTKATPFILTERS_EXPORT double ProjectedError(
-  const ModelNode& node, const ViewPoint& view, double errorScale);
-
 /// True when the sphere (center, radius) lies entirely outside one of the view's planes.
 VTKATPFILTERS_EXPORT bool OutsideFrustum(const float sphere[4], const ViewPoint& view);
 

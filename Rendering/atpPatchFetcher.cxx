@@ -110,10 +110,4 @@ double PatchFetcher::DecodeSeconds() const
   return Seconds;
 }
 
-std::size_t PatchFetcher::Pending() const
-{
-  std::lock_guard<std::mutex> lock(Mutex);
-  return Queue.size() + Busy.size() - Finished.size();
-}
-
 } // namespace atp

@@ -40,8 +40,6 @@ public:
   /// Totals since construction: patches decoded and seconds the threads spent decoding.
   std::uint64_t DecodedPatches() const;
   double DecodeSeconds() const;
-  /// Patches waiting or being decoded.
-  std::size_t Pending() const;
 
 private:
   void Work();

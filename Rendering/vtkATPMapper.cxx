@@ -59,6 +59,7 @@ struct GpuPatch
   std::size_t Stride = 0;
   bool HasColors = false;
   std::uint32_t Triangles = 0;
+  std::uint64_t UploadFrame = 0; ///< the frame that uploaded it
 
   void Release()
   {
@@ -302,7 +303,7 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     {
       return; // no room: the region stays coarser, and the patch is asked for again later
     }
-    cache.Patches.Insert(patch.Node, Upload(patch), patch.Bytes());
+    cache.Patches.Insert(patch.Node, Upload(patch), patch.Bytes()).UploadFrame = stats.Frame;
     cache.OnGpu[patch.Node] = 1;
     ++stats.Uploads;
     stats.UploadBytes += patch.Bytes();
@@ -442,6 +443,7 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     glDrawElements(GL_TRIANGLES, gpu->IndexCount, gpu->IndexType, nullptr);
     ++stats.Patches;
     stats.Triangles += gpu->Triangles;
+    stats.CacheHits += gpu->UploadFrame != stats.Frame;
   }
   if (bound)
   {
@@ -453,7 +455,6 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   }
   stats.DrawSeconds = SecondsSince(drawStart);
 
-  stats.CacheHits = stats.Patches >= stats.Uploads ? stats.Patches - stats.Uploads : 0;
   stats.CacheMisses = in.Cut.Missing.size();
   stats.CacheEntries = cache.Patches.GetCount();
   stats.CacheBytes = cache.Patches.GetBytes();

@@ -8,6 +8,7 @@
 //   atp-bench-render MODEL.atp [--compare-full MESH.ply] [--frames N] [--size WxH]
 //                    [--tolerance PX] [--csv FILE] [--no-prefetch]
 #include "atpRenderStatistics.h"
+#include "atpWindowImage.h"
 #include "vtkATPMapper.h"
 #include "vtkATPModel.h"
 #include "vtkATPReader.h"
@@ -26,7 +27,6 @@
 #include "vtkRenderer.h"
 #include "vtkRendererCollection.h"
 #include "vtkSmartPointer.h"
-#include "vtkWindowToImageFilter.h"
 
 #include <algorithm>
 #include <chrono>
@@ -95,17 +95,6 @@ double Percentile(std::vector<double> values, double p)
 {
   std::sort(values.begin(), values.end());
   return values.empty() ? 0 : values[std::min(values.size() - 1, std::size_t(p * double(values.size())))];
-}
-
-vtkSmartPointer<vtkImageData> Grab(vtkRenderWindow* window)
-{
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->ReadFrontBufferOff();
-  grab->Update();
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->DeepCopy(grab->GetOutput());
-  return image;
 }
 
 vtkSmartPointer<vtkRenderWindow> Window(int width, int height, vtkActor* actor)
@@ -189,7 +178,7 @@ int main(int argc, char** argv)
   {
     window->Render();
   }
-  vtkSmartPointer<vtkImageData> atpImage = Grab(window);
+  vtkSmartPointer<vtkImageData> atpImage = atp::CaptureWindow(window);
   const double finalMiB = ResidentMiB(), peakMiB = PeakResidentMiB();
 
   if (!csv.empty())
@@ -268,7 +257,7 @@ int main(int argc, char** argv)
       fullSeconds.push_back(std::chrono::duration<double>(Clock::now() - start).count());
     }
     vtkNew<vtkImageDifference> difference;
-    difference->SetInputData(Grab(fullWindow));
+    difference->SetInputData(atp::CaptureWindow(fullWindow));
     difference->SetImageData(atpImage);
     difference->SetThreshold(32);
     difference->Update();

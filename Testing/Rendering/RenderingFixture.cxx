@@ -10,7 +10,6 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkTesting.h"
-#include "vtkWindowToImageFilter.h"
 
 #include <chrono>
 #include <stdexcept>
@@ -60,17 +59,6 @@ int RenderUntilConverged(vtkRenderWindow* window, vtkATPMapper* mapper, int fram
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   return frames + 1;
-}
-
-vtkSmartPointer<vtkImageData> Grab(vtkRenderWindow* window)
-{
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->ReadFrontBufferOff();
-  grab->Update();
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->DeepCopy(grab->GetOutput());
-  return image;
 }
 
 double ImageError(vtkImageData* a, vtkImageData* b)

@@ -26,8 +26,6 @@ vtkSmartPointer<vtkRenderWindow> MakeWindow(int width, int height);
 void AimCamera(vtkRenderer* renderer, double azimuth, double elevation, double zoom);
 /// Renders until the mapper drew its whole cut (at most `frames` frames); returns the frames.
 int RenderUntilConverged(vtkRenderWindow* window, vtkATPMapper* mapper, int frames = 400);
-/// The window's current picture.
-vtkSmartPointer<vtkImageData> Grab(vtkRenderWindow* window);
 /// Channel differences below this do not count (vtkImageDifference's default, 105 of 255, lets
 /// visibly smoothed surfaces pass; atp calibrate uses 32 too).
 constexpr int StrictIntensityThreshold = 32;

@@ -8,6 +8,7 @@
 #include "atpModelFile.h"
 #include "atpRenderStatistics.h"
 #include "atpTetra.h"
+#include "atpWindowImage.h"
 #include "vtkATPMapper.h"
 #include "vtkATPReader.h"
 
@@ -80,7 +81,7 @@ vtkSmartPointer<vtkImageData> FullResolution(double azimuth, double elevation, d
   FirstRenderer(window)->AddActor(actor);
   AimCamera(FirstRenderer(window), azimuth, elevation, zoom);
   window->Render();
-  return Grab(window);
+  return atp::CaptureWindow(window);
 }
 
 TEST(Mapper, MatchesTheFullResolutionMapperAtOnePixel)
@@ -96,7 +97,7 @@ TEST(Mapper, MatchesTheFullResolutionMapperAtOnePixel)
     EXPECT_LT(RenderUntilConverged(scene.Window, scene.Mapper), 400);
     const atp::RenderStatistics& stats = scene.Mapper->GetStatistics();
     EXPECT_GT(stats.Triangles, 0u);
-    const double error = ImageError(FullResolution(v.Azimuth, v.Elevation, v.Zoom), Grab(scene.Window));
+    const double error = ImageError(FullResolution(v.Azimuth, v.Elevation, v.Zoom), atp::CaptureWindow(scene.Window));
     std::printf("view %g/%g/%g: %zu patches, %llu triangles, image error %.4f\n", v.Azimuth,
       v.Elevation, v.Zoom, stats.Patches, static_cast<unsigned long long>(stats.Triangles), error);
     EXPECT_LE(error, FidelityThreshold)
@@ -111,7 +112,7 @@ TEST(Mapper, ACoarseToleranceFailsTheSameComparison)
   scene.Mapper->SetTolerancePixels(60);
   AimCamera(FirstRenderer(scene.Window), 30, 40, 1.0);
   RenderUntilConverged(scene.Window, scene.Mapper);
-  EXPECT_GT(ImageError(FullResolution(30, 40, 1.0), Grab(scene.Window)), FidelityThreshold)
+  EXPECT_GT(ImageError(FullResolution(30, 40, 1.0), atp::CaptureWindow(scene.Window)), FidelityThreshold)
     << scene.Mapper->GetStatistics().Triangles << " triangles";
 }
 
@@ -252,7 +253,7 @@ TEST(Mapper, SeveralRenderersAndWindows)
     other->Render();
   }
   // Each drew: the second window's picture is not empty, and the first one's has both halves.
-  vtkSmartPointer<vtkImageData> first = Grab(scene.Window), second = Grab(other);
+  vtkSmartPointer<vtkImageData> first = atp::CaptureWindow(scene.Window), second = atp::CaptureWindow(other);
   auto lit = [](vtkImageData* image, int x0, int x1) {
     int count = 0;
     int* extent = image->GetExtent();
