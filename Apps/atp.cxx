@@ -1,5 +1,6 @@
 // atp: the command line of Adaptive TetraPuzzles for VTK.
 #include "atpCalibrate.h"
+#include "atpExtractCommand.h"
 #include "atpCommandLine.h"
 #include "atpConstruction.h"
 #include "atpModelCommands.h"
@@ -187,6 +188,7 @@ void PrintHelp()
                "  info       describe a model (--json for machines)\n"
                "  verify     check every checksum, invariant and patch of a model\n"
                "  calibrate  find and store a model's error scale from rendered views\n"
+               "  extract    write a level of detail (a camera's cut or a level) as PLY, VTP or STL\n"
                "  generate   write a large test surface as binary PLY\n\n"
                "Run 'atp COMMAND --help' for the options of a command.\n";
 }
@@ -223,6 +225,10 @@ int main(int argc, char** argv)
     if (command == "calibrate")
     {
       return atp::CalibrateCommand(Rest(argc, argv));
+    }
+    if (command == "extract")
+    {
+      return atp::ExtractCommand(Rest(argc, argv));
     }
     std::fprintf(stderr, "atp: unknown command '%s' (see atp --help)\n", command.c_str());
     return 2;

@@ -46,42 +46,6 @@ constexpr double ViewAngleDegrees = 30;
 constexpr double NearestRadii = 1.1;
 constexpr double FarthestRadii = 4;
 
-std::string Text(double value)
-{
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-
-/// The value of an option that takes a real number in [low, high].
-double GetNumber(const CommandLine& cl, const std::string& name, double low, double high)
-{
-  const std::string text = cl.Get(name);
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || !(value >= low && value <= high))
-  {
-    throw UsageError("--" + name + " must be a number from " + Text(low) + " to " + Text(high) +
-      ", got '" + text + "'");
-  }
-  return value;
-}
-
-/// --size WxH.
-void GetSize(const CommandLine& cl, int& width, int& height)
-{
-  const std::string text = cl.Get("size");
-  const char* end = text.data() + text.size();
-  const auto w = std::from_chars(text.data(), end, width);
-  const bool haveX = w.ec == std::errc() && w.ptr != end && *w.ptr == 'x';
-  const auto h = haveX ? std::from_chars(w.ptr + 1, end, height) : w;
-  if (!haveX || h.ec != std::errc() || h.ptr != end || width < 16 || height < 16 ||
-    width > 8192 || height > 8192)
-  {
-    throw UsageError("--size must be WIDTHxHEIGHT with each from 16 to 8192, got '" + text + "'");
-  }
-}
-
 /// Uniform in [0, 1) straight from the engine's bits: the std:: distributions are not specified
 /// bit for bit, and the views must be the same with every standard library.
 double Uniform(std::mt19937_64& random)
@@ -263,17 +227,17 @@ private:
   vtkNew<vtkImageDifference> Difference;
 };
 
-std::string ScaleText(double scale)
+std::string ScaleFormatNumber(double scale)
 {
   if (std::isinf(scale))
   {
-    return "> " + Text(HighestScale);
+    return "> " + FormatNumber(HighestScale);
   }
   if (std::isnan(scale))
   {
     return "-";
   }
-  return (scale <= LowestScale ? "<= " : "") + Text(scale);
+  return (scale <= LowestScale ? "<= " : "") + FormatNumber(scale);
 }
 
 /// The smallest float not below `scale`: what is stored must not refine less than what passed.
@@ -315,13 +279,13 @@ int CalibrateCommand(const std::vector<std::string>& arguments)
   const std::string& path = cl.Positional(0);
   const int viewCount = int(cl.GetInteger("views", 1, 1000));
   int width = 0, height = 0;
-  GetSize(cl, width, height);
-  const double tolerance = GetNumber(cl, "tolerance", 1e-3, 1e3);
+  cl.GetSize("size", width, height);
+  const double tolerance = cl.GetNumber("tolerance", 1e-3, 1e3);
   const int intensity = int(cl.GetInteger("intensity", 0, 255));
-  const double threshold = GetNumber(cl, "threshold", 0, 1e9);
+  const double threshold = cl.GetNumber("threshold", 0, 1e9);
   const std::uint64_t seed = std::uint64_t(cl.GetInteger("seed", 0, INT64_MAX));
   const bool check = cl.Has("check");
-  const double checkScale = check ? GetNumber(cl, "check", 0, 1e9) : 0;
+  const double checkScale = check ? cl.GetNumber("check", 0, 1e9) : 0;
 
   const ModelFile model = ModelFile::Open(path);
   const ModelHeader& h = model.Header();
@@ -363,7 +327,7 @@ int CalibrateCommand(const std::vector<std::string>& arguments)
   {
     const auto worst = std::find(smallest.begin(), smallest.end(), scale) - smallest.begin();
     throw std::runtime_error("view " + std::to_string(worst + 1) +
-      " differs from the full resolution even at scale " + Text(HighestScale) +
+      " differs from the full resolution even at scale " + FormatNumber(HighestScale) +
       ": the renderer is not deterministic, or --threshold is too strict");
   }
   std::printf("at scale %g:\n%6s %10s %16s %12s %9s %12s\n", scale, "view", "distance",
@@ -380,7 +344,7 @@ int CalibrateCommand(const std::vector<std::string>& arguments)
     most = std::max(most, o.Triangles);
     sum += double(o.Triangles);
     std::printf("%6zu %8.2f R %16s %12s %8.1f%% %12.3g%s\n", v + 1,
-      calibrator.GetView(v).Radii, ScaleText(smallest[v]).c_str(),
+      calibrator.GetView(v).Radii, ScaleFormatNumber(smallest[v]).c_str(),
       FormatCount(double(o.Triangles)).c_str(),
       100.0 * double(o.Triangles) / double(std::max<std::size_t>(1, calibrator.GetFullTriangles())),
       o.ImageError, same ? "" : "  differs");

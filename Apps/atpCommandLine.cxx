@@ -1,6 +1,10 @@
 #include "atpCommandLine.h"
 
+#include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
 
@@ -151,6 +155,79 @@ long long CommandLine::GetInteger(const std::string& longName, long long low, lo
       " to " + std::to_string(high) + ", got '" + text + "'");
   }
   return value;
+}
+
+std::string FormatNumber(double value)
+{
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+namespace
+{
+/// The whole of `text` as a finite number, or false.
+bool ParseNumber(const std::string& text, double& value)
+{
+  char* end = nullptr;
+  value = std::strtod(text.c_str(), &end);
+  return !text.empty() && end == text.c_str() + text.size() && std::isfinite(value);
+}
+} // namespace
+
+double CommandLine::GetNumber(const std::string& longName, double low, double high) const
+{
+  const std::string text = Get(longName);
+  double value = 0;
+  if (!ParseNumber(text, value) || value < low || value > high)
+  {
+    throw UsageError("--" + longName + " must be a number from " + FormatNumber(low) + " to " +
+      FormatNumber(high) + ", got '" + text + "'");
+  }
+  return value;
+}
+
+std::vector<double> CommandLine::GetNumbers(const std::string& longName, std::size_t count) const
+{
+  const std::string text = Get(longName);
+  std::vector<double> values;
+  std::size_t start = 0;
+  for (;;)
+  {
+    const std::size_t comma = text.find(',', start);
+    double value = 0;
+    if (!ParseNumber(text.substr(start, comma - start), value))
+    {
+      break;
+    }
+    values.push_back(value);
+    if (comma == std::string::npos)
+    {
+      break;
+    }
+    start = comma + 1;
+  }
+  if (values.size() != count || std::count(text.begin(), text.end(), ',') != std::ptrdiff_t(count - 1))
+  {
+    throw UsageError("--" + longName + " must be " + std::to_string(count) +
+      " comma-separated numbers, got '" + text + "'");
+  }
+  return values;
+}
+
+void CommandLine::GetSize(const std::string& longName, int& width, int& height) const
+{
+  const std::string text = Get(longName);
+  const char* end = text.data() + text.size();
+  const auto w = std::from_chars(text.data(), end, width);
+  const bool haveX = w.ec == std::errc() && w.ptr != end && *w.ptr == 'x';
+  const auto h = haveX ? std::from_chars(w.ptr + 1, end, height) : w;
+  if (!haveX || h.ec != std::errc() || h.ptr != end || width < 16 || height < 16 ||
+    width > 8192 || height > 8192)
+  {
+    throw UsageError("--" + longName + " must be WIDTHxHEIGHT with each from 16 to 8192, got '" +
+      text + "'");
+  }
 }
 
 }

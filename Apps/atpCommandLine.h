@@ -18,6 +18,9 @@ public:
   using std::runtime_error::runtime_error;
 };
 
+/// A number as %g prints it (for messages).
+std::string FormatNumber(double value);
+
 class CommandLine
 {
 public:
@@ -38,6 +41,12 @@ public:
   std::string Get(const std::string& longName) const;
   /// The option's value as an integer in [low, high]; throws UsageError otherwise.
   long long GetInteger(const std::string& longName, long long low, long long high) const;
+  /// The option's value as a real number in [low, high]; throws UsageError otherwise.
+  double GetNumber(const std::string& longName, double low, double high) const;
+  /// `count` comma-separated finite real numbers ("1,2.5,-3"); throws UsageError otherwise.
+  std::vector<double> GetNumbers(const std::string& longName, std::size_t count) const;
+  /// WIDTHxHEIGHT, each from 16 to 8192; throws UsageError otherwise.
+  void GetSize(const std::string& longName, int& width, int& height) const;
   const std::string& Positional(std::size_t i) const { return Positionals.at(i); }
 
 private:

@@ -76,6 +76,31 @@ cmp -s "$work/x.atp" "$work/keep.atp" || { echo "FAIL: a failed build changed th
 expect 1 "cannot write scratch data.*(File too large|No space)" -- bash -c "ulimit -f 2048; exec '$atp' build '$data/bumpy-torus.ply' -o '$work/full.atp' --bucket-memory 1 --scratch '$work' --quiet"
 [ -z "$(ls "$work" | grep -v -E '^(x|y|keep)\.atp$|\.ply$')" ] || { echo "FAIL: files left behind: $(ls "$work")"; failures=$((failures + 1)); }
 
+# atp extract: a level or a camera's cut as PLY, VTP or STL, read back by the builder's own
+# readers; mistakes and failed writes are one line, a non-zero exit and no file.
+expect 0 "--level N" -- "$atp" extract --help
+expect 0 "wrote .*l6.ply: 186920 triangles from [0-9]+ patches \(level 60\)" -- "$atp" extract "$work/x.atp" --level 60 -o "$work/l6.ply"
+expect 0 "input: .* 186.9k triangles \(0 degenerate dropped, 574 boundary edges\)" -- "$atp" build "$work/l6.ply" -o "$work/l6.atp" --quiet
+expect 0 "wrote .*far.vtp: [0-9]+ triangles .*the cut at 1 px" -- "$atp" extract "$work/x.atp" --camera 0,0,80,0,0,0 -o "$work/far.vtp" --patch-ids
+expect 0 "wrote .*near.stl: [0-9]+ triangles .*the cut at 0.5 px" -- "$atp" extract "$work/x.atp" --camera 0,0,4,0,0,0 --tolerance 0.5 -o "$work/near.stl" --backface
+far=$("$atp" extract "$work/x.atp" --camera 0,0,80,0,0,0 -o "$work/far.ply" | sed -E 's/.*: ([0-9]+) triangles.*/\1/')
+near=$("$atp" extract "$work/x.atp" --camera 0,0,6,0,0,0 -o "$work/near.ply" | sed -E 's/.*: ([0-9]+) triangles.*/\1/')
+[ "$far" -lt "$near" ] || { echo "FAIL: a far camera's cut ($far) is not coarser than a near one's ($near)"; failures=$((failures + 1)); }
+expect 2 "must name a .ply, .vtp or .stl" -- "$atp" extract "$work/x.atp" -o "$work/x.obj"
+expect 2 "missing -o" -- "$atp" extract "$work/x.atp"
+expect 2 "camera must be 6 comma-separated numbers" -- "$atp" extract "$work/x.atp" --camera 1,2,nan -o "$work/c.ply"
+expect 2 "tolerance must be a number" -- "$atp" extract "$work/x.atp" --tolerance 0 -o "$work/c.ply"
+expect 1 "not an ATP model" -- "$atp" extract "$data/bumpy-torus.ply" -o "$work/c.ply"
+expect 1 "c.ply: cannot write the mesh" -- "$atp" extract "$work/x.atp" -o "$work/no/such/dir/c.ply"
+cp "$work/l6.ply" "$work/keep.ply"
+for ext in ply vtp stl; do
+  expect 1 "full.$ext: cannot write the mesh" -- bash -c "ulimit -f 200; exec '$atp' extract '$work/x.atp' --level 6 -o '$work/full.$ext'"
+  expect 1 "keep.ply: cannot write the mesh" -- bash -c "ulimit -f 200; exec '$atp' extract '$work/x.atp' --level 6 -o '$work/keep.ply'"
+done
+cmp -s "$work/l6.ply" "$work/keep.ply" || { echo "FAIL: a failed extract changed the existing mesh"; failures=$((failures + 1)); }
+[ -z "$(ls "$work" | grep -E 'full|partial')" ] || { echo "FAIL: extract left files behind: $(ls "$work")"; failures=$((failures + 1)); }
+rm -f "$work"/*.ply "$work"/*.vtp "$work"/*.stl "$work/l6.atp"
+
 # The generator writes a mesh the builder reads back, and never a partial file.
 expect 0 "wrote .*g.ply: [0-9]+ triangles" -- "$atp" generate -n 5000 --holes 2 -o "$work/g.ply"
 expect 0 "boundary edges" -- "$atp" build "$work/g.ply" -o "$work/g.atp" --quiet

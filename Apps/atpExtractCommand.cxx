@@ -1,0 +1,230 @@
+#include "atpExtractCommand.h"
+
+#include "atpCommandLine.h"
+#include "atpModelFile.h"
+#include "atpTriangleSource.h"
+#include "vtkATPExtractCut.h"
+#include "vtkATPModel.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkCommand.h"
+#include "vtkErrorCode.h"
+#include "vtkExecutive.h"
+#include "vtkNew.h"
+#include "vtkPLYWriter.h"
+#include "vtkPolyData.h"
+#include "vtkSTLWriter.h"
+#include "vtkSmartPointer.h"
+#include "vtkXMLPolyDataWriter.h"
+#include "vtkXMLWriter.h"
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+#include <unistd.h>
+
+namespace atp
+{
+
+namespace
+{
+/// Collects the first VTK error message of the objects it observes, instead of VTK's output
+/// window: the command reports one clear line.
+struct FirstError
+{
+  vtkNew<vtkCallbackCommand> Command;
+  std::string Message;
+  FirstError()
+  {
+    Command->SetClientData(this);
+    Command->SetCallback([](vtkObject*, unsigned long, void* self, void* message) {
+      auto* first = static_cast<FirstError*>(self);
+      if (first->Message.empty() && message)
+      {
+        // VTK's text: "ERROR: In file, line N\nvtkClass (0x...): what went wrong".
+        std::string text = static_cast<const char*>(message);
+        while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
+        {
+          text.pop_back();
+        }
+        const std::size_t line = text.find('\n') + 1; // 0 when there is one line
+        const std::size_t object = text.find("): ", line);
+        first->Message = object == std::string::npos ? text : text.substr(object + 3);
+        first->Message = first->Message.substr(0, first->Message.find('\n'));
+      }
+    });
+  }
+};
+
+bool EndsWith(const std::string& text, const std::string& suffix)
+{
+  return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+/// A writer for the format `path` names by its extension, writing to `file`; null for an
+/// unknown extension.
+vtkSmartPointer<vtkAlgorithm> WriterFor(const std::string& path, const std::string& file)
+{
+  if (EndsWith(path, ".ply"))
+  {
+    auto ply = vtkSmartPointer<vtkPLYWriter>::New();
+    ply->SetFileTypeToBinary();
+    ply->SetArrayName("Colors"); // the model's vertex colors, when it has them
+    ply->SetFileName(file.c_str());
+    return ply;
+  }
+  if (EndsWith(path, ".vtp"))
+  {
+    auto vtp = vtkSmartPointer<vtkXMLPolyDataWriter>::New();
+    vtp->SetFileName(file.c_str());
+    return vtp;
+  }
+  if (EndsWith(path, ".stl"))
+  {
+    auto stl = vtkSmartPointer<vtkSTLWriter>::New();
+    stl->SetFileTypeToBinary();
+    stl->SetFileName(file.c_str());
+    return stl;
+  }
+  return nullptr;
+}
+/// Triangles in `file`, read back by the project's own readers (which reject truncated files)
+/// as the format of `path`; -1 when it cannot be read. VTK's PLY writer does not check its
+/// writes, so a full disk would otherwise pass.
+long long TrianglesIn(const std::string& path, const std::string& file)
+{
+  try
+  {
+    const std::string directory = path.find('/') == std::string::npos ? "." : path.substr(0, path.rfind('/'));
+    // The source opens by extension: the partial file ends like the output.
+    const std::unique_ptr<TriangleSource> source = OpenTriangleSource(file, directory);
+    std::vector<SoupTriangle> buffer(4096);
+    while (source->Read(buffer.data(), buffer.size()) > 0)
+    {
+    }
+    return static_cast<long long>(source->Stats().FacesRead);
+  }
+  catch (const std::exception&)
+  {
+    return -1;
+  }
+}
+} // namespace
+
+int ExtractCommand(const std::vector<std::string>& arguments)
+{
+  CommandLine cl("extract",
+    "Writes one level of detail of a model as an ordinary mesh: the cut a camera sees at a\n"
+    "screen-space tolerance (what vtkATPMapper draws), or a whole level of the hierarchy.");
+  cl.AddPositional("MODEL", "a .atp model");
+  cl.AddOption("output", "o", "OUT", "the mesh to write: .ply (binary), .vtp or .stl");
+  cl.AddOption("level", "", "N", "every node of level N (and the leaves above it), no camera");
+  cl.AddOption("camera", "", "EX,EY,EZ,FX,FY,FZ",
+    "eye and focal point (default: the whole model in view, looking down -z)");
+  cl.AddOption("up", "", "UX,UY,UZ", "the camera's view up", "0,1,0");
+  cl.AddOption("view-angle", "", "DEGREES", "vertical field of view", "30");
+  cl.AddOption("size", "", "WxH", "viewport in pixels", "800x600");
+  cl.AddOption("tolerance", "", "PX", "largest screen-space error in pixels", "1");
+  cl.AddFlag("backface", "drop patches facing away from the camera (closed surfaces only)");
+  cl.AddFlag("patch-ids", "add the PatchId cell array (kept by .vtp)");
+  if (!cl.Parse(arguments))
+  {
+    return 0;
+  }
+  if (!cl.Has("output"))
+  {
+    throw UsageError("missing -o OUT");
+  }
+  // Written beside OUT and renamed when complete: a failed write leaves no file that looks
+  // like a mesh, and an existing OUT untouched.
+  const std::string out = cl.Get("output");
+  // (Same extension: VTK's PLY writer appends .ply to names without it.)
+  const std::string partial =
+    out + ".partial-" + std::to_string(::getpid()) + out.substr(out.size() - 4);
+  const vtkSmartPointer<vtkAlgorithm> writer = WriterFor(out, partial);
+  if (!writer)
+  {
+    throw UsageError("-o must name a .ply, .vtp or .stl file, got '" + out + "'");
+  }
+  int width = 0, height = 0;
+  cl.GetSize("size", width, height);
+  const double tolerance = cl.GetNumber("tolerance", 1e-3, 1e6);
+  const double viewAngle = cl.GetNumber("view-angle", 1, 179);
+  const std::vector<double> up = cl.GetNumbers("up", 3);
+
+  auto file = std::make_shared<const ModelFile>(ModelFile::Open(cl.Positional(0)));
+  const ModelHeader& h = file->Header();
+  vtkNew<vtkATPModel> model;
+  model->SetModelFile(file);
+  vtkNew<vtkATPExtractCut> extract;
+  extract->SetInputData(model);
+  extract->SetPatchIds(cl.Has("patch-ids"));
+  vtkNew<vtkCamera> camera;
+  std::string what;
+  if (cl.Has("level"))
+  {
+    extract->SetLevel(int(cl.GetInteger("level", 0, 60)));
+    what = "level " + cl.Get("level");
+  }
+  else
+  {
+    double center[3], radius = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      center[a] = (h.BoxMin[a] + h.BoxMax[a]) / 2;
+      radius += (h.BoxMax[a] - h.BoxMin[a]) * (h.BoxMax[a] - h.BoxMin[a]) / 4;
+    }
+    radius = std::sqrt(radius);
+    std::vector<double> eyeAndFocus = { center[0], center[1],
+      center[2] + radius / std::sin(viewAngle * M_PI / 360), center[0], center[1], center[2] };
+    if (cl.Has("camera"))
+    {
+      eyeAndFocus = cl.GetNumbers("camera", 6);
+    }
+    camera->SetPosition(eyeAndFocus[0], eyeAndFocus[1], eyeAndFocus[2]);
+    camera->SetFocalPoint(eyeAndFocus[3], eyeAndFocus[4], eyeAndFocus[5]);
+    camera->SetViewUp(up[0], up[1], up[2]);
+    camera->SetViewAngle(viewAngle);
+    extract->SetCamera(camera);
+    extract->SetViewportSize(width, height);
+    extract->SetTolerancePixels(tolerance);
+    extract->SetBackfaceCulling(cl.Has("backface"));
+    what = "the cut at " + cl.Get("tolerance") + " px for " + cl.Get("size");
+  }
+  FirstError errors;
+  extract->AddObserver(vtkCommand::ErrorEvent, errors.Command);
+  extract->Update();
+  if (!errors.Message.empty())
+  {
+    throw std::runtime_error(errors.Message);
+  }
+
+  writer->SetInputConnection(extract->GetOutputPort());
+  writer->AddObserver(vtkCommand::ErrorEvent, errors.Command);
+  // The executive only repeats that the writer failed, at length: not a message for users.
+  vtkNew<vtkCallbackCommand> ignore;
+  writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, ignore);
+  // VTK's XML writers are not vtkWriters; both kinds have Write().
+  auto* xml = vtkXMLWriter::SafeDownCast(writer);
+  const int written = xml ? xml->Write() : vtkWriter::SafeDownCast(writer)->Write();
+  const vtkIdType triangles = extract->GetOutput()->GetNumberOfPolys();
+  if (!written || writer->GetErrorCode() != vtkErrorCode::NoError || !errors.Message.empty() ||
+    TrianglesIn(out, partial) != static_cast<long long>(triangles) || std::rename(partial.c_str(), out.c_str()) != 0)
+  {
+    std::remove(partial.c_str());
+    const unsigned long code = writer->GetErrorCode();
+    throw std::runtime_error(out + ": cannot write the mesh" +
+      (code != vtkErrorCode::NoError ? std::string(": ") + vtkErrorCode::GetStringFromErrorCode(code)
+        : !errors.Message.empty()    ? ": " + errors.Message
+                                     : std::string(" (the file read back is incomplete)")));
+  }
+  std::printf("wrote %s: %lld triangles from %lld patches (%s)\n", out.c_str(),
+    static_cast<long long>(triangles),
+    static_cast<long long>(extract->GetPatchCount()), what.c_str());
+  return 0;
+}
+
+} // namespace atp
