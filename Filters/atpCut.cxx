@@ -211,15 +211,9 @@ void CutSelector::Select(const ViewPoint& view, double errorScale, const Residen
 
 std::vector<std::uint32_t> SelectCut(const ModelFile& model, const ViewPoint& view)
 {
-  return SelectCut(model, view, model.Header().ErrorScale);
-}
-
-std::vector<std::uint32_t> SelectCut(
-  const ModelFile& model, const ViewPoint& view, double errorScale)
-{
   CutSelector selector(model, std::make_shared<const CutIndex>(model));
   CutResult result;
-  selector.Select(view, errorScale, ResidentFunction(), result);
+  selector.Select(view, model.Header().ErrorScale, ResidentFunction(), result);
   return std::move(result.Drawn);
 }
 

@@ -98,12 +98,10 @@ private:
   std::vector<std::uint32_t> Stack;
 };
 
-/// The full cut for `view` (no residency limit) with the model's own ErrorScale, or with
-/// `errorScale` in its place (to calibrate it). Builds a CutIndex: for one-off cuts.
+/// The full cut for `view` (no residency limit) with the model's ErrorScale. Builds a
+/// CutIndex: for one-off cuts (a CutSelector serves many).
 VTKATPFILTERS_EXPORT std::vector<std::uint32_t> SelectCut(
   const ModelFile& model, const ViewPoint& view);
-VTKATPFILTERS_EXPORT std::vector<std::uint32_t> SelectCut(
-  const ModelFile& model, const ViewPoint& view, double errorScale);
 
 /// The cut made of every node at `level`, plus the leaves above it.
 VTKATPFILTERS_EXPORT std::vector<std::uint32_t> SelectLevel(const ModelFile& model, int level);

@@ -2,6 +2,7 @@
 
 #include "atpCameraView.h"
 #include "atpCut.h"
+#include "atpCutIndex.h"
 #include "atpModelFile.h"
 #include "atpPatchPolyData.h"
 #include "vtkATPModel.h"
@@ -63,7 +64,15 @@ int vtkATPExtractCut::RequestData(
       {
         view.PlaneCount = 0;
       }
-      nodes = atp::SelectCut(*model, view);
+      if (this->IndexedModel != input->GetSharedModelFile())
+      {
+        this->Index = std::make_shared<const atp::CutIndex>(*model);
+        this->IndexedModel = input->GetSharedModelFile();
+      }
+      atp::CutSelector selector(*model, this->Index);
+      atp::CutResult cut;
+      selector.Select(view, model->Header().ErrorScale, atp::ResidentFunction(), cut);
+      nodes = std::move(cut.Drawn);
     }
     std::vector<std::uint32_t> trianglePatch;
     const atp::PatchMesh mesh =

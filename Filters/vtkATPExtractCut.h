@@ -17,6 +17,13 @@
 #include "vtkATPFiltersModule.h"
 #include "vtkPolyDataAlgorithm.h"
 
+#include <memory>
+
+namespace atp
+{
+class CutIndex;
+class ModelFile;
+}
 class vtkCamera;
 
 class VTKATPFILTERS_EXPORT vtkATPExtractCut : public vtkPolyDataAlgorithm
@@ -79,6 +86,10 @@ private:
   int Level = -1;
   bool PatchIds = false;
   vtkIdType PatchCount = 0;
+  // The diamond index of the last model cut, kept while the input holds the same model: a
+  // camera that moves costs a cut, not a new index.
+  std::shared_ptr<const atp::ModelFile> IndexedModel;
+  std::shared_ptr<const atp::CutIndex> Index;
 
   vtkATPExtractCut(const vtkATPExtractCut&) = delete;
   void operator=(const vtkATPExtractCut&) = delete;
