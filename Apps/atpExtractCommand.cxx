@@ -64,8 +64,8 @@ bool EndsWith(const std::string& text, const std::string& suffix)
   return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-/// A writer for the format `path` names by its extension, writing to `file`; null for an
-/// unknown extension.
+/// A writer for the format `path` names by its extension (.ply, .vtp or .stl), writing to
+/// `file`.
 vtkSmartPointer<vtkAlgorithm> WriterFor(const std::string& path, const std::string& file)
 {
   if (EndsWith(path, ".ply"))
@@ -82,16 +82,12 @@ vtkSmartPointer<vtkAlgorithm> WriterFor(const std::string& path, const std::stri
     vtp->SetFileName(file.c_str());
     return vtp;
   }
-  if (EndsWith(path, ".stl"))
-  {
-    auto stl = vtkSmartPointer<vtkSTLWriter>::New();
-    stl->SetFileTypeToBinary();
-    stl->SetFileName(file.c_str());
-    return stl;
-  }
-  return nullptr;
+  auto stl = vtkSmartPointer<vtkSTLWriter>::New();
+  stl->SetFileTypeToBinary();
+  stl->SetFileName(file.c_str());
+  return stl;
 }
-/// Triangles in `file`, read back by the project's own readers (which reject truncated files)
+/// Triangles in `file` (not empty: the readers reject empty meshes), read back by the project's own readers (which reject truncated files)
 /// as the format of `path`; -1 when it cannot be read. VTK's PLY writer does not check its
 /// writes, so a full disk would otherwise pass.
 long long TrianglesIn(const std::string& path, const std::string& file)
@@ -100,12 +96,8 @@ long long TrianglesIn(const std::string& path, const std::string& file)
   {
     const std::string directory = path.find('/') == std::string::npos ? "." : path.substr(0, path.rfind('/'));
     // The source opens by extension: the partial file ends like the output.
-    const std::unique_ptr<TriangleSource> source = OpenTriangleSource(file, directory);
-    std::vector<SoupTriangle> buffer(4096);
-    while (source->Read(buffer.data(), buffer.size()) > 0)
-    {
-    }
-    return static_cast<long long>(source->Stats().FacesRead);
+    // Opening reads every face once (and rejects a truncated file).
+    return static_cast<long long>(OpenTriangleSource(file, directory)->Stats().FacesRead);
   }
   catch (const std::exception&)
   {
@@ -141,14 +133,14 @@ int ExtractCommand(const std::vector<std::string>& arguments)
   // Written beside OUT and renamed when complete: a failed write leaves no file that looks
   // like a mesh, and an existing OUT untouched.
   const std::string out = cl.Get("output");
+  if (!EndsWith(out, ".ply") && !EndsWith(out, ".vtp") && !EndsWith(out, ".stl"))
+  {
+    throw UsageError("-o must name a .ply, .vtp or .stl file, got '" + out + "'");
+  }
   // (Same extension: VTK's PLY writer appends .ply to names without it.)
   const std::string partial =
     out + ".partial-" + std::to_string(::getpid()) + out.substr(out.size() - 4);
   const vtkSmartPointer<vtkAlgorithm> writer = WriterFor(out, partial);
-  if (!writer)
-  {
-    throw UsageError("-o must name a .ply, .vtp or .stl file, got '" + out + "'");
-  }
   int width = 0, height = 0;
   cl.GetSize("size", width, height);
   const double tolerance = cl.GetNumber("tolerance", 1e-3, 1e6);
@@ -212,7 +204,7 @@ int ExtractCommand(const std::vector<std::string>& arguments)
   const int written = xml ? xml->Write() : vtkWriter::SafeDownCast(writer)->Write();
   const vtkIdType triangles = extract->GetOutput()->GetNumberOfPolys();
   if (!written || writer->GetErrorCode() != vtkErrorCode::NoError || !errors.Message.empty() ||
-    TrianglesIn(out, partial) != static_cast<long long>(triangles) || std::rename(partial.c_str(), out.c_str()) != 0)
+    (triangles > 0 && TrianglesIn(out, partial) != static_cast<long long>(triangles)) || std::rename(partial.c_str(), out.c_str()) != 0)
   {
     std::remove(partial.c_str());
     const unsigned long code = writer->GetErrorCode();

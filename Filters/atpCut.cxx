@@ -37,6 +37,16 @@ double ScreenError(const ModelNode& node, const ViewPoint& view, double factor)
 }
 } // namespace
 
+bool SameView(const ViewPoint& a, const ViewPoint& b)
+{
+  return std::equal(a.Eye, a.Eye + 3, b.Eye) && a.TolerancePixels == b.TolerancePixels &&
+    a.ViewportHeight == b.ViewportHeight && a.ViewAngleDegrees == b.ViewAngleDegrees &&
+    a.Parallel == b.Parallel && a.ParallelScale == b.ParallelScale &&
+    std::equal(a.Direction, a.Direction + 3, b.Direction) && a.PlaneCount == b.PlaneCount &&
+    a.BackfaceCulling == b.BackfaceCulling &&
+    std::equal(&a.Planes[0][0], &a.Planes[0][0] + 4 * a.PlaneCount, &b.Planes[0][0]);
+}
+
 bool OutsideFrustum(const float sphere[4], const ViewPoint& view)
 {
   for (int p = 0; p < view.PlaneCount; ++p)
@@ -102,13 +112,15 @@ CutSelector::CutSelector(const ModelFile& model, std::shared_ptr<const CutIndex>
 {
 }
 
-void CutSelector::Need(std::uint32_t node)
+bool CutSelector::Need(std::uint32_t node)
 {
+  const bool resident = (*Resident)(node);
   if (NeedStamp[node] != Stamp)
   {
     NeedStamp[node] = Stamp;
-    ((*Resident)(node) ? Out->Held : Out->Missing).push_back(node);
+    (resident ? Out->Held : Out->Missing).push_back(node);
   }
+  return resident;
 }
 
 bool CutSelector::Refines(std::uint32_t diamond)
@@ -129,8 +141,7 @@ bool CutSelector::Refines(std::uint32_t diamond)
     {
       for (const std::int32_t child : Model.Node(*m).Children)
       {
-        Need(std::uint32_t(child));
-        refines = refines && (*Resident)(std::uint32_t(child));
+        refines = Need(std::uint32_t(child)) && refines;
       }
     }
     // Every diamond above must refine too, or some member of this one is not in the cut.

@@ -40,6 +40,9 @@ struct ViewPoint
   bool BackfaceCulling = false;
 };
 
+/// Whether two views ask for the same cut (same eye, planes, projection and tolerance).
+VTKATPFILTERS_EXPORT bool SameView(const ViewPoint& a, const ViewPoint& b);
+
 /// True when the sphere (center, radius) lies entirely outside one of the view's planes.
 VTKATPFILTERS_EXPORT bool OutsideFrustum(const float sphere[4], const ViewPoint& view);
 
@@ -81,8 +84,9 @@ public:
 
 private:
   bool Refines(std::uint32_t diamond);
-  /// Records a patch the cut needs, in Missing or Held, once per call.
-  void Need(std::uint32_t node);
+  /// Records a patch the cut needs, in Missing or Held, once per call; returns whether it is
+  /// resident.
+  bool Need(std::uint32_t node);
 
   const ModelFile& Model;
   std::shared_ptr<const CutIndex> IndexRef;

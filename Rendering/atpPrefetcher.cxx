@@ -77,6 +77,13 @@ void Prefetcher::Run()
     std::copy(predicted.Eye, predicted.Eye + 3, PredictedEye);
     const double scale = Scale;
     HasNew = false;
+    if (PassCount > 0 && SameView(predicted, LastPredicted) && scale == LastScale)
+    {
+      Changed.notify_all(); // a still camera: the pages are advised already
+      continue;
+    }
+    LastPredicted = predicted;
+    LastScale = scale;
     Busy = true;
     lock.unlock();
 

@@ -57,6 +57,8 @@ private:
   bool HasPrevious = false;
   double Scale = 1;
   double PredictedEye[3] = { 0, 0, 0 };
+  ViewPoint LastPredicted; ///< of the last pass, to skip passes that would repeat it
+  double LastScale = 0;
   std::uint64_t PassCount = 0;
   std::uint64_t Advised = 0;
   std::thread Thread;

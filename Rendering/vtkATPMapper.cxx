@@ -40,6 +40,10 @@ namespace
 {
 using Clock = std::chrono::steady_clock;
 
+/// Renderers of one window take turns with the mapper: what any of the last few frames asked
+/// for is still worth uploading when it arrives.
+constexpr std::uint64_t RecentFrames = 4;
+
 double SecondsSince(Clock::time_point start)
 {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -74,6 +78,13 @@ struct GpuPatch
 struct WindowCache
 {
   std::vector<std::uint8_t> OnGpu;
+  /// The frame that last asked for each patch: an arrival no recent frame asked for is not
+  /// worth an upload (the view moved on).
+  std::vector<std::uint64_t> WantedFrame;
+  /// Did not fit beside what the view pins: not asked for again until the view changes
+  /// (asking would only decode them again and again for nothing).
+  std::vector<std::uint8_t> NoRoom;
+  atp::ViewPoint LastView;
   atp::PatchCache<GpuPatch> Patches{ [this](GpuPatch& p) {
     p.Release();
     OnGpu[p.Node] = 0;
@@ -85,6 +96,7 @@ struct WindowCache
 struct vtkATPMapper::Internals
 {
   std::shared_ptr<const atp::ModelFile> Model;
+  std::shared_ptr<const atp::ModelFile> Unusable; ///< its diamonds are not whole: reported
   std::uint64_t ModelGeneration = 0;
   std::shared_ptr<const atp::CutIndex> Index;
   std::unique_ptr<atp::CutSelector> Selector;
@@ -93,6 +105,7 @@ struct vtkATPMapper::Internals
   std::vector<std::uint8_t> Corrupt; ///< per node: reported once, never drawn
   std::map<vtkWindow*, std::unique_ptr<WindowCache>> Windows;
   atp::CutResult Cut;
+  std::vector<std::uint32_t> Wanted; ///< requested by the last frame
   std::vector<atp::RenderPatch> Arrived;
   atp::RenderStatistics Stats;
   Clock::time_point Start = Clock::now();
@@ -107,6 +120,7 @@ struct vtkATPMapper::Internals
     Index.reset();
     Model.reset();
     Corrupt.clear();
+    Wanted.clear();
   }
 };
 
@@ -235,6 +249,10 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     vtkErrorMacro(<< "no model to draw: the input is empty");
     return;
   }
+  if (model == in.Unusable)
+  {
+    return; // reported once
+  }
   if (model != in.Model)
   {
     in.Reset();
@@ -244,6 +262,7 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     }
     catch (const std::exception& e)
     {
+      in.Unusable = model;
       vtkErrorMacro(<< e.what());
       return;
     }
@@ -277,10 +296,11 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   {
     cache.Patches.Clear();
     cache.OnGpu.assign(model->NodeCount(), 0);
+    cache.WantedFrame.assign(model->NodeCount(), 0);
+    cache.NoRoom.assign(model->NodeCount(), 0);
     cache.ModelGeneration = in.ModelGeneration;
   }
   cache.Patches.SetBudget(std::size_t(this->CacheBudget));
-  cache.Patches.NewFrame();
   atp::RenderStatistics& stats = in.Stats;
   ++stats.Frame;
   stats.Uploads = 0;
@@ -299,21 +319,31 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
       }
       return;
     }
-    if (cache.Patches.Contains(patch.Node) || !(cache.Patches.MakeRoom(patch.Bytes()) || mustFit))
+    if (cache.Patches.Contains(patch.Node))
     {
-      return; // no room: the region stays coarser, and the patch is asked for again later
+      return;
+    }
+    if (!cache.Patches.MakeRoom(patch.Bytes()) && !mustFit)
+    {
+      cache.NoRoom[patch.Node] = 1; // the region stays coarser
+      return;
     }
     cache.Patches.Insert(patch.Node, Upload(patch), patch.Bytes()).UploadFrame = stats.Frame;
     cache.OnGpu[patch.Node] = 1;
     ++stats.Uploads;
     stats.UploadBytes += patch.Bytes();
   };
+  // Still pinned by the last frame: arrivals may evict only what it neither drew nor held.
   in.Arrived.clear();
   in.Fetcher->TakeFinished(std::size_t(this->UploadBudget), in.Arrived);
   for (const atp::RenderPatch& patch : in.Arrived)
   {
-    store(patch, false);
+    if (cache.WantedFrame[patch.Node] + RecentFrames >= stats.Frame || !patch.Error.empty())
+    {
+      store(patch, false);
+    }
   }
+  cache.Patches.NewFrame();
 
   int width = 0, height = 0, x0 = 0, y0 = 0;
   renderer->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
@@ -322,6 +352,11 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     actor->GetIsIdentity() ? nullptr : actor->GetMatrix(), this->TolerancePixels,
     this->BackfaceCulling);
   const double errorScale = model->Header().ErrorScale;
+  if (!atp::SameView(view, cache.LastView))
+  {
+    std::fill(cache.NoRoom.begin(), cache.NoRoom.end(), 0); // what fits may have changed
+    cache.LastView = view;
+  }
   const atp::ResidentFunction resident = [&](std::uint32_t node) {
     return cache.OnGpu[node] || model->Node(node).TriangleCount == 0;
   };
@@ -342,16 +377,16 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     in.Selector->Select(view, errorScale, resident, in.Cut);
   }
   stats.CutSeconds = SecondsSince(cutStart);
-  std::vector<std::uint32_t> wanted;
-  wanted.reserve(in.Cut.Missing.size());
+  in.Wanted.clear();
   for (const std::uint32_t node : in.Cut.Missing)
   {
-    if (!in.Corrupt[node])
+    if (!in.Corrupt[node] && !cache.NoRoom[node])
     {
-      wanted.push_back(node);
+      in.Wanted.push_back(node);
+      cache.WantedFrame[node] = stats.Frame;
     }
   }
-  in.Fetcher->Request(wanted);
+  in.Fetcher->Request(in.Wanted);
   for (const std::uint32_t node : in.Cut.Held)
   {
     cache.Patches.Use(node);
@@ -462,7 +497,8 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   stats.CutNodes = in.Cut.Visited;
   stats.DecodeSeconds = in.Fetcher->DecodeSeconds();
   stats.DecodedPatches = in.Fetcher->DecodedPatches();
-  stats.Converged = wanted.empty(); // corrupt patches are never coming
+  // Corrupt patches are never coming, and those without room wait for the view to change.
+  stats.Converged = in.Wanted.empty();
   if (in.Prefetch)
   {
     in.Prefetch->Observe(view, errorScale, SecondsSince(in.Start));

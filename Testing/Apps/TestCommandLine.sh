@@ -88,6 +88,9 @@ near=$("$atp" extract "$work/x.atp" --camera 0,0,6,0,0,0 -o "$work/near.ply" | s
 [ "$far" -lt "$near" ] || { echo "FAIL: a far camera's cut ($far) is not coarser than a near one's ($near)"; failures=$((failures + 1)); }
 expect 2 "must name a .ply, .vtp or .stl" -- "$atp" extract "$work/x.atp" -o "$work/x.obj"
 expect 2 "missing -o" -- "$atp" extract "$work/x.atp"
+expect 2 "must name a .ply" -- "$atp" extract "$work/x.atp" -o x
+# Looking away from the model: an empty mesh, still a valid file.
+expect 0 "wrote .*away.ply: 0 triangles from 0 patches" -- "$atp" extract "$work/x.atp" --camera 0,0,30,0,0,60 -o "$work/away.ply"
 expect 2 "camera must be 6 comma-separated numbers" -- "$atp" extract "$work/x.atp" --camera 1,2,nan -o "$work/c.ply"
 expect 2 "tolerance must be a number" -- "$atp" extract "$work/x.atp" --tolerance 0 -o "$work/c.ply"
 expect 1 "not an ATP model" -- "$atp" extract "$data/bumpy-torus.ply" -o "$work/c.ply"

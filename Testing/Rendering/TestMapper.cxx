@@ -171,7 +171,7 @@ void ExpectCrackFree(const std::vector<unsigned>& drawn)
   }
 }
 
-TEST(Mapper, ATinyCacheStillDrawsAConformingCut)
+TEST(Mapper, ATinyCacheStillDrawsAConformingCutAndSettles)
 {
   AtpScene scene;
   scene.Mapper->SetCacheBudget(256 << 10);
@@ -179,11 +179,19 @@ TEST(Mapper, ATinyCacheStillDrawsAConformingCut)
   for (const double azimuth : { 0.0, 90.0, 180.0, 270.0 })
   {
     AimCamera(renderer, azimuth, 20, 0.9); // the whole torus in view: nothing culled
-    RenderUntilConverged(scene.Window, scene.Mapper, 60);
+    // The cut does not fit: the picture settles coarser instead of trading patches forever.
+    EXPECT_LT(RenderUntilConverged(scene.Window, scene.Mapper, 400), 400);
     const atp::RenderStatistics& stats = scene.Mapper->GetStatistics();
     EXPECT_GT(stats.Patches, 0u);
     EXPECT_LE(stats.CacheBytes, std::uint64_t(256 << 10) + (1u << 20)) << "roots may exceed";
     ExpectCrackFree(scene.Mapper->GetDrawnNodes());
+    const std::vector<unsigned> settled = scene.Mapper->GetDrawnNodes();
+    for (int frame = 0; frame < 3; ++frame)
+    {
+      scene.Window->Render();
+      EXPECT_EQ(scene.Mapper->GetDrawnNodes(), settled) << "a still camera's picture changed";
+      EXPECT_EQ(scene.Mapper->GetStatistics().Uploads, 0u);
+    }
   }
   EXPECT_GT(scene.Mapper->GetStatistics().Evictions, 0u);
 }
