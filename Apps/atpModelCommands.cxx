@@ -4,7 +4,6 @@
 #include "atpModelFile.h"
 #include "atpPatchCodec.h"
 #include "atpProgressReport.h"
-#include "atpQuantizationGrid.h"
 #include "atpTetra.h"
 
 #include <algorithm>
@@ -128,13 +127,12 @@ int VerifyCommand(const std::vector<std::string>& arguments)
   std::vector<std::string> problems = model.Verify();
   if (problems.empty())
   {
-    const QuantizationGrid grid = model.PatchGrid();
     PatchMesh patch;
     for (std::size_t i = 0; i < model.NodeCount(); ++i)
     {
       try
       {
-        DecodePatch(model.PatchData(i), model.Node(i).PatchBytes, grid, patch);
+        model.DecodePatch(i, patch);
         if (patch.TriangleCount() != model.Node(i).TriangleCount)
         {
           problems.push_back(path + ": node " + std::to_string(i) + ": the patch holds " +
@@ -145,6 +143,10 @@ int VerifyCommand(const std::vector<std::string>& arguments)
       catch (const PatchFormatError& e)
       {
         problems.push_back(path + ": node " + std::to_string(i) + ": " + e.what());
+      }
+      catch (const ModelError& e)
+      {
+        problems.push_back(e.what());
       }
     }
   }

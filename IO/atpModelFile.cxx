@@ -3,6 +3,7 @@
 #include "atpFileDescriptor.h"
 
 #include "atpChecksum.h"
+#include "atpMappedCopy.h"
 #include "atpPatchCodec.h"
 #include "atpResidentPages.h"
 
@@ -32,6 +33,8 @@ constexpr std::uint64_t PatchAlignment = 16;
 constexpr std::size_t RootCount = 6;
 constexpr std::uint32_t MaxTrianglesPerPatch = 1u << 24;
 constexpr std::size_t MaxListedPatches = 100;
+constexpr char ShrankWhileOpen[] =
+  "the file shrank while open (truncated or rewritten by another program)";
 
 std::uint64_t AlignUp(std::uint64_t value, std::uint64_t alignment)
 {
@@ -99,7 +102,7 @@ ModelFile ModelFile::Open(const std::string& path)
   const std::uint64_t size = std::uint64_t(info.st_size);
   if (size < sizeof(ModelHeader))
   {
-    // Too short to map a header: tell a cut-off model from some other small file.
+    // Too short to hold a header: tell a cut-off model from some other small file.
     char head[sizeof(ModelMagic)] = {};
     const std::size_t want = std::size_t(std::min<std::uint64_t>(size, sizeof(head)));
     ssize_t got;
@@ -114,14 +117,16 @@ ModelFile ModelFile::Open(const std::string& path)
     file.Throw(Cat("truncated: ", size, " bytes, smaller than the ", sizeof(ModelHeader),
       "-byte header"));
   }
+  file.MapBytes = std::size_t(size);
+  file.ReadHead(fd.Fd);
+  file.ValidateNodes();
   void* map = ::mmap(nullptr, std::size_t(size), PROT_READ, MAP_SHARED, fd.Fd, 0);
   if (map == MAP_FAILED)
   {
     file.Throw(Cat("cannot map: ", std::strerror(errno)));
   }
   file.Map = static_cast<const std::uint8_t*>(map);
-  file.MapBytes = std::size_t(size);
-  file.Validate();
+  file.PatchSection = file.Map + file.Header().PatchSectionOffset;
 
   // Patches are read where the view goes, not in file order: no read-ahead.
   const std::uint64_t page = std::uint64_t(::sysconf(_SC_PAGESIZE));
@@ -145,6 +150,7 @@ ModelFile& ModelFile::operator=(ModelFile&& other) noexcept
   {
     Release();
     FilePath = std::move(other.FilePath);
+    Head = std::move(other.Head);
     Map = other.Map;
     MapBytes = other.MapBytes;
     NodeArray = other.NodeArray;
@@ -178,7 +184,40 @@ void ModelFile::Throw(const std::string& problem) const
   throw ModelError(FilePath + ": " + problem);
 }
 
-void ModelFile::Validate()
+void ModelFile::ReadHead(int fd)
+{
+  auto readAt = [&](std::uint64_t offset, std::uint64_t bytes) {
+    std::uint8_t* to = Head.data() + offset;
+    while (bytes > 0)
+    {
+      const ssize_t got = ::pread(fd, to, std::size_t(bytes), off_t(offset));
+      if (got < 0 && errno == EINTR)
+      {
+        continue;
+      }
+      if (got < 0)
+      {
+        Throw(Cat("cannot read: ", std::strerror(errno)));
+      }
+      if (got == 0)
+      {
+        Throw("truncated while being read");
+      }
+      to += got;
+      offset += std::uint64_t(got);
+      bytes -= std::uint64_t(got);
+    }
+  };
+  Head.resize(sizeof(ModelHeader));
+  readAt(0, sizeof(ModelHeader));
+  ValidateHeader();
+  // The header's layout is checked against the file's size: this allocates no more than the file.
+  const std::uint64_t patchOffset = Header().PatchSectionOffset;
+  Head.resize(std::size_t(patchOffset));
+  readAt(sizeof(ModelHeader), patchOffset - sizeof(ModelHeader));
+}
+
+void ModelFile::ValidateHeader()
 {
   const ModelHeader& h = Header();
   if (std::memcmp(h.Magic, ModelMagic, sizeof(ModelMagic)) != 0)
@@ -256,20 +295,6 @@ void ModelFile::Validate()
     Throw(Cat("patch section of ", h.PatchSectionBytes, " bytes at offset ", patchOffset,
       " does not end the file at ", h.FileBytes));
   }
-  // No checksum covers the padding between sections, so it must be zero.
-  const std::uint64_t gaps[2][2] = { { sizeof(ModelHeader), nodeOffset },
-    { nodeOffset + nodeBytes, patchOffset } };
-  for (const auto& gap : gaps)
-  {
-    const std::uint8_t* end = Map + gap[1];
-    const std::uint8_t* nonzero =
-      std::find_if(Map + gap[0], end, [](std::uint8_t b) { return b != 0; });
-    if (nonzero != end)
-    {
-      Throw(Cat("nonzero padding at byte ", nonzero - Map));
-    }
-  }
-
   if (!AllFinite(h.BoxMin, 3) || !AllFinite(h.BoxMax, 3) || h.BoxMin[0] > h.BoxMax[0] ||
     h.BoxMin[1] > h.BoxMax[1] || h.BoxMin[2] > h.BoxMax[2])
   {
@@ -288,14 +313,33 @@ void ModelFile::Validate()
   {
     Throw("error scale is not finite and non-negative");
   }
-  if (Checksum(Map + nodeOffset, std::size_t(nodeBytes)) != h.NodeSectionChecksum)
+}
+
+void ModelFile::ValidateNodes()
+{
+  const ModelHeader& h = Header();
+  const std::uint64_t nodeOffset = h.NodeSectionOffset;
+  const std::uint64_t nodeBytes = h.NodeSectionBytes;
+  // No checksum covers the padding between sections, so it must be zero.
+  const std::uint64_t gaps[2][2] = { { sizeof(ModelHeader), nodeOffset },
+    { nodeOffset + nodeBytes, h.PatchSectionOffset } };
+  for (const auto& gap : gaps)
+  {
+    const auto end = Head.begin() + std::ptrdiff_t(gap[1]);
+    const auto nonzero =
+      std::find_if(Head.begin() + std::ptrdiff_t(gap[0]), end, [](std::uint8_t b) { return b != 0; });
+    if (nonzero != end)
+    {
+      Throw(Cat("nonzero padding at byte ", nonzero - Head.begin()));
+    }
+  }
+  if (Checksum(Head.data() + nodeOffset, std::size_t(nodeBytes)) != h.NodeSectionChecksum)
   {
     Throw("node section checksum mismatch: the nodes are corrupt");
   }
 
-  NodeArray = reinterpret_cast<const ModelNode*>(Map + nodeOffset);
+  NodeArray = reinterpret_cast<const ModelNode*>(Head.data() + nodeOffset);
   Count = std::size_t(h.NodeCount);
-  PatchSection = Map + patchOffset;
 
   // The forest: 6 distinct roots first, then every node reached from an earlier parent that
   // names it in the slot its last TetId bit selects, and that it names back. So each node has
@@ -441,17 +485,34 @@ void ModelFile::Validate()
   }
 }
 
-void ModelFile::CheckPatch(std::size_t i) const
+bool ModelFile::CopyPatchSection(
+  std::uint64_t from, std::uint64_t to, std::vector<std::uint8_t>& bytes) const
+{
+  bytes.resize(std::size_t(to - from));
+  return CopyFromMapping(bytes.data(), PatchSection + from, bytes.size());
+}
+
+void ModelFile::ReadPatch(std::size_t i, std::vector<std::uint8_t>& bytes) const
 {
   if (i >= Count)
   {
     throw std::out_of_range(Cat(FilePath, ": no node ", i, " (", Count, " nodes)"));
   }
   const ModelNode& n = NodeArray[i];
-  if (Checksum(PatchData(i), n.PatchBytes) != n.PatchChecksum)
+  if (!CopyPatchSection(n.PatchOffset, n.PatchOffset + n.PatchBytes, bytes))
+  {
+    Throw(ShrankWhileOpen);
+  }
+  if (Checksum(bytes.data(), bytes.size()) != n.PatchChecksum)
   {
     Throw(Cat("node ", i, ": patch checksum mismatch: the patch is corrupt"));
   }
+}
+
+void ModelFile::CheckPatch(std::size_t i) const
+{
+  std::vector<std::uint8_t> bytes;
+  ReadPatch(i, bytes);
 }
 
 QuantizationGrid ModelFile::PatchGrid() const
@@ -468,8 +529,10 @@ QuantizationGrid ModelFile::PatchGrid() const
 
 void ModelFile::DecodePatch(std::size_t i, PatchMesh& out) const
 {
-  CheckPatch(i);
-  atp::DecodePatch(PatchData(i), NodeArray[i].PatchBytes, PatchGrid(), out);
+  // Decoding threads keep their buffer: no allocation per patch.
+  thread_local std::vector<std::uint8_t> bytes;
+  ReadPatch(i, bytes);
+  atp::DecodePatch(bytes.data(), bytes.size(), PatchGrid(), out);
 }
 
 void ModelFile::ReleasePatchPages(std::size_t i) const
@@ -489,9 +552,9 @@ std::vector<std::string> ModelFile::Verify() const
     ::madvise(advised, advisedBytes, MADV_SEQUENTIAL);
   }
 
-  // One pass over the section: the section hash runs ahead to the end of each patch, and the
-  // patch is checked while still in cache (patches are in file order in files the writer makes;
-  // any order is still correct).
+  // One pass over the section: each step copies from where the section hash stands (or the
+  // patch's start, if earlier) to the end of the patch, hashes what is new and checks the patch
+  // in the copy (patches are in file order in files the writer makes; any order is correct).
   std::vector<std::string> problems;
   std::size_t corrupt = 0;
   const std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> hash(
@@ -503,29 +566,44 @@ std::vector<std::string> ModelFile::Verify() const
   }
   XXH3_64bits_reset(state);
   std::uint64_t hashed = 0;
+  std::vector<std::uint8_t> bytes;
+  bool shrank = false;
   for (std::size_t i = 0; i < Count; ++i)
   {
     const ModelNode& n = NodeArray[i];
+    const std::uint64_t from = std::min(hashed, n.PatchOffset);
     const std::uint64_t end = n.PatchOffset + n.PatchBytes;
+    if (!CopyPatchSection(from, std::max(end, from), bytes))
+    {
+      shrank = true;
+      break;
+    }
     if (end > hashed)
     {
-      XXH3_64bits_update(state, PatchSection + hashed, std::size_t(end - hashed));
+      XXH3_64bits_update(state, bytes.data() + (hashed - from), std::size_t(end - hashed));
       hashed = end;
     }
-    if (Checksum(PatchData(i), n.PatchBytes) != n.PatchChecksum && ++corrupt <= MaxListedPatches)
+    if (Checksum(bytes.data() + (n.PatchOffset - from), n.PatchBytes) != n.PatchChecksum &&
+      ++corrupt <= MaxListedPatches)
     {
       problems.push_back(Cat(FilePath, ": node ", i, ": patch checksum mismatch"));
     }
   }
-  XXH3_64bits_update(state, PatchSection + hashed, std::size_t(h.PatchSectionBytes - hashed));
-  const std::uint64_t sectionChecksum = XXH3_64bits_digest(state);
   if (corrupt > MaxListedPatches)
   {
     problems.push_back(Cat(FilePath, ": ", corrupt - MaxListedPatches, " more corrupt patches"));
   }
-  if (sectionChecksum != h.PatchSectionChecksum)
+  if (shrank || !CopyPatchSection(hashed, h.PatchSectionBytes, bytes))
   {
-    problems.push_back(Cat(FilePath, ": patch section checksum mismatch"));
+    problems.push_back(Cat(FilePath, ": ", ShrankWhileOpen));
+  }
+  else
+  {
+    XXH3_64bits_update(state, bytes.data(), bytes.size());
+    if (XXH3_64bits_digest(state) != h.PatchSectionChecksum)
+    {
+      problems.push_back(Cat(FilePath, ": patch section checksum mismatch"));
+    }
   }
 
   if (advisedBytes > 0)

@@ -1,7 +1,9 @@
-// A .atp model opened for reading (docs/atp-format.md): memory-mapped, never read whole, and
-// validated up front in O(nodes) so that a corrupt, truncated or foreign file is a clear error
-// rather than a crash or a wrong picture later. Patch bytes are checked lazily (CheckPatch, on
-// first decode) or all at once (Verify, for `atp verify`).
+// A .atp model opened for reading (docs/atp-format.md): the header and nodes read into memory
+// and validated up front in O(nodes), the patches memory-mapped and never read whole, so that a
+// corrupt, truncated or foreign file is a clear error rather than a crash or a wrong picture
+// later. Patch bytes are checked lazily (on decode) or all at once (Verify, for `atp verify`),
+// always on a copy taken from the map: a file truncated or rewritten while open is an error,
+// not a SIGBUS.
 #ifndef atpModelFile_h
 #define atpModelFile_h
 
@@ -29,8 +31,9 @@ public:
 class VTKATPIO_EXPORT ModelFile
 {
 public:
-  /// Memory-maps the file and validates the header, the section layout, the node section's
-  /// checksum and the forest's structure. Throws ModelError.
+  /// Reads and validates the header, the section layout, the node section's checksum and the
+  /// forest's structure, then memory-maps the patches. Counts in the header are checked
+  /// against the file's size before anything is sized from them. Throws ModelError.
   static ModelFile Open(const std::string& path);
 
   ModelFile(ModelFile&& other) noexcept;
@@ -39,18 +42,22 @@ public:
   ModelFile& operator=(const ModelFile&) = delete;
   ~ModelFile();
 
-  const ModelHeader& Header() const { return *reinterpret_cast<const ModelHeader*>(Map); }
+  const ModelHeader& Header() const { return *reinterpret_cast<const ModelHeader*>(Head.data()); }
   std::size_t NodeCount() const { return Count; }
   const ModelNode& Node(std::size_t i) const { return NodeArray[i]; }
   const ModelNode* Nodes() const { return NodeArray; }
   /// The encoded bytes of node i's patch, inside the map (16-byte aligned; Node(i).PatchBytes
-  /// of them). Not checked: call CheckPatch before trusting them.
+  /// of them). Not checked, and gone if the file shrinks: read patches with ReadPatch; this is
+  /// for page-level advice (prefetching) and tests.
   const std::uint8_t* PatchData(std::size_t i) const { return PatchSection + NodeArray[i].PatchOffset; }
-  /// Compares node i's patch with its checksum; throws ModelError naming the node.
+  /// Copies node i's patch into `bytes` and compares it with its checksum; throws ModelError
+  /// naming the node when it is corrupt, or saying the file shrank when it is no longer there.
+  void ReadPatch(std::size_t i, std::vector<std::uint8_t>& bytes) const;
+  /// ReadPatch, keeping nothing.
   void CheckPatch(std::size_t i) const;
   /// The grid every patch of this model stores its positions on.
   QuantizationGrid PatchGrid() const;
-  /// CheckPatch, then decodes node i's patch into `out` (reusing its capacity). Throws
+  /// ReadPatch, then decodes node i's patch into `out` (reusing its capacity). Throws
   /// ModelError or PatchFormatError.
   void DecodePatch(std::size_t i, PatchMesh& out) const;
   /// Drops the whole pages of node i's patch from the process's resident memory: they stay in
@@ -64,10 +71,16 @@ public:
 private:
   ModelFile() = default;
   void Release();
-  void Validate();
+  void ReadHead(int fd);
+  void ValidateHeader();
+  void ValidateNodes();
+  /// Copies [from, to) of the patch section; false where the file no longer holds it.
+  bool CopyPatchSection(std::uint64_t from, std::uint64_t to, std::vector<std::uint8_t>& bytes) const;
   [[noreturn]] void Throw(const std::string& problem) const;
 
   std::string FilePath;
+  /// The header, the node section and the padding up to the patch section, as in the file.
+  std::vector<std::uint8_t> Head;
   const std::uint8_t* Map = nullptr;
   std::size_t MapBytes = 0;
   const ModelNode* NodeArray = nullptr;

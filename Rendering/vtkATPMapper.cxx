@@ -32,6 +32,7 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <set>
 #include <thread>
 
 vtkStandardNewMacro(vtkATPMapper);
@@ -102,7 +103,10 @@ struct vtkATPMapper::Internals
   std::unique_ptr<atp::CutSelector> Selector;
   std::unique_ptr<atp::PatchFetcher> Fetcher;
   std::unique_ptr<atp::Prefetcher> Prefetch;
-  std::vector<std::uint8_t> Corrupt; ///< per node: reported once, never drawn
+  std::vector<std::uint8_t> Corrupt; ///< per node: never drawn
+  /// Each distinct error once: a model cut short under the viewer fails every missing patch
+  /// with the same message.
+  std::set<std::string> ReportedErrors;
   std::map<vtkWindow*, std::unique_ptr<WindowCache>> Windows;
   atp::CutResult Cut;
   std::vector<std::uint32_t> Wanted; ///< requested by the last frame
@@ -120,6 +124,7 @@ struct vtkATPMapper::Internals
     Index.reset();
     Model.reset();
     Corrupt.clear();
+    ReportedErrors.clear();
     Wanted.clear();
   }
 };
@@ -312,9 +317,9 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   auto store = [&](const atp::RenderPatch& patch, bool mustFit) {
     if (!patch.Error.empty())
     {
-      if (!in.Corrupt[patch.Node])
+      in.Corrupt[patch.Node] = 1;
+      if (in.ReportedErrors.insert(patch.Error).second)
       {
-        in.Corrupt[patch.Node] = 1;
         vtkErrorMacro(<< patch.Error);
       }
       return;

@@ -24,7 +24,8 @@
  * translucency sorting (opacity below 1 blends without depth peeling).
  *
  * Corrupt patches are reported once each as a VTK error and never drawn (the region stays at
- * the coarser level).
+ * the coarser level). A model file truncated or rewritten while it is drawn is reported once
+ * and the view keeps what was loaded (the file is memory-mapped: no SIGBUS crash).
  */
 #ifndef vtkATPMapper_h
 #define vtkATPMapper_h

@@ -629,6 +629,65 @@ TEST(ModelFile, TruncationIsReported)
   }
 }
 
+// A viewer's model cut short by another program while mapped: reading a page past the new end
+// raises SIGBUS, which must become an error on the read, not the end of the process.
+TEST(ModelFile, ShrinkingWhileOpenIsAnErrorNotACrash)
+{
+  TempDirectory dir;
+  const std::string path = dir / "model.atp";
+  const Model m = Synthetic();
+  Write(m, path);
+  const ModelFile file = ModelFile::Open(path);
+  PatchMesh patch;
+  std::vector<std::uint8_t> bytes;
+  ASSERT_NO_THROW(file.ReadPatch(1, bytes));
+  ASSERT_TRUE(file.Verify().empty());
+  const std::vector<std::uint8_t> whole = ReadAll(path);
+
+  fs::resize_file(path, 0);
+  const std::string shrank = "the file shrank while open (truncated or rewritten by another program)";
+  for (std::size_t i : { 1, 8 })
+  {
+    try
+    {
+      file.ReadPatch(i, bytes);
+      ADD_FAILURE() << "node " << i << " read from a file cut to nothing";
+    }
+    catch (const ModelError& e)
+    {
+      EXPECT_EQ(std::string(e.what()), path + ": " + shrank);
+    }
+    EXPECT_THROW(file.DecodePatch(i, patch), ModelError);
+  }
+  EXPECT_EQ(file.Verify(), std::vector<std::string>{ path + ": " + shrank });
+  // What was read at open stays usable.
+  EXPECT_EQ(file.Header().NodeCount, m.Nodes.size());
+  EXPECT_EQ(file.Node(8).TriangleCount, m.Nodes[8].TriangleCount);
+
+  // Once the file is whole again, so are the reads.
+  WriteAll(path, whole);
+  EXPECT_NO_THROW(file.ReadPatch(8, bytes));
+}
+
+// The handler takes only faults inside its own copies: any other SIGBUS still ends the process.
+TEST(ModelFileDeathTest, OtherBusErrorsAreNotSwallowed)
+{
+  TempDirectory dir;
+  const std::string path = dir / "model.atp";
+  Write(Synthetic(), path);
+  const ModelFile file = ModelFile::Open(path);
+  std::vector<std::uint8_t> bytes;
+  file.ReadPatch(1, bytes); // installs the handler
+  fs::resize_file(path, 0);
+  EXPECT_EXIT(
+    {
+      volatile std::uint8_t first = *file.PatchData(1);
+      (void)first;
+      std::exit(0);
+    },
+    testing::KilledBySignal(SIGBUS), "");
+}
+
 TEST(ModelFile, ForeignFilesAreNotModels)
 {
   TempDirectory dir;

@@ -241,6 +241,35 @@ TEST(Mapper, CorruptPatchIsReportedOnceAndNeverDrawn)
   ::unlink(corrupt.c_str());
 }
 
+TEST(Mapper, ModelCutShortWhileDrawnIsReportedOnceAndTheViewGoesOn)
+{
+  const std::string copy = TempPath("shrinking.atp");
+  {
+    std::ifstream in(TorusModel(), std::ios::binary);
+    std::ofstream(copy, std::ios::binary) << in.rdbuf();
+  }
+  AtpScene scene(copy);
+  ErrorCounter errors;
+  scene.Mapper->AddObserver(vtkCommand::ErrorEvent, errors.Command);
+  AimCamera(FirstRenderer(scene.Window), 0, 0, 0.3); // far: coarse patches only
+  RenderUntilConverged(scene.Window, scene.Mapper);
+  const std::size_t coarseTriangles = scene.Mapper->GetStatistics().Triangles;
+  ASSERT_EQ(errors.Errors, 0);
+
+  // Another program cuts the mapped file to its first page, then the camera moves in.
+  ::truncate(copy.c_str(), 4096);
+  scene.Mapper->SetTolerancePixels(0.01);
+  AimCamera(FirstRenderer(scene.Window), 0, 0, 1.0);
+  for (int frame = 0; frame < 3; ++frame)
+  {
+    RenderUntilConverged(scene.Window, scene.Mapper);
+  }
+  EXPECT_EQ(errors.Errors, 1);
+  EXPECT_TRUE(scene.Mapper->GetConverged());
+  EXPECT_GE(scene.Mapper->GetStatistics().Triangles, coarseTriangles);
+  ::unlink(copy.c_str());
+}
+
 TEST(Mapper, SeveralRenderersAndWindows)
 {
   AtpScene scene;
