@@ -82,22 +82,57 @@ ModelWriter::ModelWriter(const std::string& path, std::uint64_t nodeCount)
   {
     throw std::bad_alloc();
   }
-  std::string name = path + ".partial-XXXXXX";
-  std::vector<char> buffer(name.begin(), name.end());
-  buffer.push_back('\0');
-  Fd = ::mkstemp(buffer.data());
-  if (Fd < 0)
+  // A file without a name until Commit: a build killed at any point (even by SIGKILL) leaves
+  // nothing behind. File systems without O_TMPFILE get a named temporary file instead.
+  Fd = ::open(DirectoryOf(path).c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0666);
+  if (Fd < 0 && (errno == EOPNOTSUPP || errno == EISDIR || errno == EINVAL))
   {
-    Fail(errno);
+    Fd = CreateNamedTemporary();
+    // mkstemp makes the file private (0600); the model should get a new file's usual mode.
+    if (::fchmod(Fd, 0666 & ~CurrentUmask()) != 0)
+    {
+      Fail(errno);
+    }
   }
-  TempPath = buffer.data();
-  // mkstemp makes the file private (0600); the model should get a new file's usual mode.
-  if (::fchmod(Fd, 0666 & ~CurrentUmask()) != 0)
+  if (Fd < 0)
   {
     Fail(errno);
   }
   Buffer.reserve(BufferBytes);
   Patches.reserve(nodeCount);
+}
+
+int ModelWriter::CreateNamedTemporary()
+{
+  std::string name = Path + ".partial-XXXXXX";
+  const int fd = ::mkstemp(name.data());
+  if (fd < 0)
+  {
+    Fail(errno);
+  }
+  TempPath = name;
+  return fd;
+}
+
+void ModelWriter::NameAnonymousFile()
+{
+  // linkat through /proc needs no privilege (AT_EMPTY_PATH does); a name left by another
+  // writer is skipped.
+  const std::string source = "/proc/self/fd/" + std::to_string(Fd);
+  for (unsigned attempt = 0;; ++attempt)
+  {
+    const std::string name =
+      Path + ".partial-" + std::to_string(::getpid()) + "-" + std::to_string(attempt);
+    if (::linkat(AT_FDCWD, source.c_str(), AT_FDCWD, name.c_str(), AT_SYMLINK_FOLLOW) == 0)
+    {
+      TempPath = name;
+      return;
+    }
+    if (errno != EEXIST)
+    {
+      Fail(errno);
+    }
+  }
 }
 
 ModelWriter::~ModelWriter()
@@ -252,6 +287,11 @@ void ModelWriter::Commit(ModelHeader header, std::vector<ModelNode>& nodes)
   if (::ftruncate(Fd, off_t(header.FileBytes)) != 0 || ::fsync(Fd) != 0)
   {
     Fail(errno);
+  }
+  // Named only now, complete and on disk, and renamed over the target at once.
+  if (TempPath.empty())
+  {
+    NameAnonymousFile();
   }
   const int fd = Fd;
   Fd = -1;

@@ -1,6 +1,7 @@
 // Writes a .atp model (docs/atp-format.md) so that a crash, a full disk or a killed process never
 // leaves a file that looks valid: everything goes to a temporary file beside the target, which
-// replaces the target by an atomic rename only once it is complete and on disk.
+// replaces the target by an atomic rename only once it is complete and on disk. The temporary
+// file has no name until then (O_TMPFILE), so a killed build leaves nothing at all behind.
 #ifndef atpModelWriter_h
 #define atpModelWriter_h
 
@@ -19,8 +20,8 @@ namespace atp
 class VTKATPIO_EXPORT ModelWriter
 {
 public:
-  /// Creates a temporary file `path`.partial-XXXXXX in the target's directory; nothing at `path`
-  /// changes until Commit. Throws std::runtime_error("cannot write <path>: <reason>").
+  /// Creates an unnamed temporary file in the target's directory (a named `path`.partial-XXXXXX
+  /// where the file system lacks O_TMPFILE); nothing at `path` changes until Commit. Throws std::runtime_error("cannot write <path>: <reason>").
   ModelWriter(const std::string& path, std::uint64_t nodeCount);
   /// Removes the temporary file unless committed.
   ~ModelWriter();
@@ -58,12 +59,16 @@ private:
 
   void Flush();
   void WriteAt(std::uint64_t offset, const void* data, std::size_t bytes);
+  /// mkstemp beside the target, for file systems without O_TMPFILE.
+  int CreateNamedTemporary();
+  /// Links the O_TMPFILE file to a temporary name beside the target.
+  void NameAnonymousFile();
   /// Removes the temporary file and throws "cannot write <path>: <strerror(err)>".
   [[noreturn]] void Fail(int err);
   void RequireOpen() const;
 
   std::string Path;
-  std::string TempPath;
+  std::string TempPath; ///< empty while the file has no name
   int Fd = -1;
   bool Finished = false;
   std::uint64_t NodeCount = 0;

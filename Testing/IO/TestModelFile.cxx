@@ -22,6 +22,8 @@
 #include <stdexcept>
 #include <string>
 #include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <utility>
 #include <vector>
 
@@ -717,7 +719,7 @@ TEST(ModelWriter, AbandonedWriterLeavesNothing)
   const Model m = Synthetic();
   {
     ModelWriter writer(path, m.Nodes.size());
-    EXPECT_EQ(dir.Entries().size(), 1u) << "the temporary file exists while writing";
+    EXPECT_TRUE(dir.Entries().empty()) << "the temporary file has a name while writing";
     EXPECT_FALSE(fs::exists(path));
     writer.AddPatch(m.Patches[0].data(), m.Patches[0].size());
   }
@@ -733,6 +735,32 @@ TEST(ModelWriter, AbandonedWriterLeavesNothing)
     EXPECT_THROW(writer.Commit(ModelHeader{}, nodes), std::logic_error);
   }
   EXPECT_TRUE(dir.Entries().empty());
+}
+
+// SIGKILL runs no destructor: only a temporary file without a name leaves nothing behind.
+TEST(ModelWriter, AKilledWriterLeavesNothingAndTheOldFileUntouched)
+{
+  TempDirectory dir;
+  const std::string path = dir / "model.atp";
+  const Model m = Synthetic();
+  Write(m, path);
+  const std::vector<std::uint8_t> before = ReadAll(path);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0)
+  {
+    ModelWriter writer(path, m.Nodes.size());
+    for (const auto& patch : m.Patches)
+    {
+      writer.AddPatch(patch.data(), patch.size());
+    }
+    ::raise(SIGKILL);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+  EXPECT_EQ(dir.Entries(), std::vector<std::string>{ "model.atp" });
+  EXPECT_EQ(ReadAll(path), before);
 }
 
 TEST(ModelWriter, CommitReplacesAnExistingFile)
