@@ -13,6 +13,7 @@ packages=(
   libxxhash-dev          # patch and section checksums (XXH3)
   libopenmpi-dev openmpi-bin   # VTK 9.1 on Debian links MPI; distributed build
   xvfb xauth             # headless rendering for tests
+  clang libclang-rt-14-dev   # libFuzzer for scripts/fuzz.sh
   mricron-data           # real MRI volumes for the brain isosurface benchmark
 )
 
