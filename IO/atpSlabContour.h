@@ -1,0 +1,55 @@
+// The isosurface of a volume, contoured slab by slab so memory holds one slab of the volume and
+// its triangles, never the whole. Consecutive slabs share a slice; the vertices on that shared
+// slice are welded, so the triangles and vertices are those of contouring the whole volume at
+// once (same cells, same marching cubes cases): the surface has no gap, no duplicate and no
+// extra boundary at the seams.
+#ifndef atpSlabContour_h
+#define atpSlabContour_h
+
+#include "vtkATPIOModule.h" // export macro
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+namespace atp
+{
+
+class VolumeSlabReader;
+
+/// Receives the welded surface as it is made: vertices numbered from 0 in the order given, and
+/// triangles (three vertex numbers each) that use only vertices already given.
+class VTKATPIO_EXPORT ContourSink
+{
+public:
+  virtual ~ContourSink();
+  /// `count` vertices, x, y, z each, in world coordinates.
+  virtual void AddVertices(const float* xyz, std::size_t count) = 0;
+  virtual void AddTriangles(const std::uint32_t* corners, std::size_t count) = 0;
+};
+
+struct SlabContourStats
+{
+  std::array<int, 3> Dimensions{ { 0, 0, 0 } }; ///< voxels along x, y, z
+  int Slabs = 0;
+  std::array<double, 2> DataRange{ { 0, 0 } }; ///< smallest and largest voxel value
+  std::uint64_t Vertices = 0;
+  std::uint64_t Triangles = 0;
+};
+
+/// Default slices per slab: for a 1000 x 1000 slice of 16-bit voxels, 128 MiB of volume.
+constexpr int DefaultSlabSlices = 64;
+
+/// Contours `volume` at `isoValue` (vtkFlyingEdges3D on each slab of `slabSlices` slices, at
+/// least 2) into `sink`, in order of increasing z. Vertices on a shared slice come from the
+/// first slab that makes them; a vertex exactly at a voxel (iso equal to the voxel's value)
+/// made by several edges there is made once, where the whole-volume contour makes one per edge
+/// (such triangles have zero area). Throws InputError naming the volume: multi-component or
+/// missing scalars, a NaN or infinite voxel, fewer than 2 voxels along an axis, no surface at
+/// `isoValue` (the message gives the data range), or more than 2^32-1 vertices.
+VTKATPIO_EXPORT SlabContourStats ContourSlabs(
+  VolumeSlabReader& volume, double isoValue, int slabSlices, ContourSink& sink);
+
+} // namespace atp
+
+#endif
