@@ -17,6 +17,7 @@
 #include <vtkPolyData.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -80,15 +81,31 @@ void CheckFinite(Array* values, vtkImageData* slab, const std::string& name)
   }
 }
 
-/// A vertex on a shared slice, by its exact in-slice position (both slabs compute it from the
-/// same edge and the same two voxel values, in index coordinates where the slice is exact).
-std::uint64_t SeamKey(double x, double y)
+/// A vertex position in index coordinates, bit for bit.
+struct PointKey
 {
-  const float fx = float(x), fy = float(y);
-  std::uint32_t bx, by;
-  std::memcpy(&bx, &fx, sizeof(bx));
-  std::memcpy(&by, &fy, sizeof(by));
-  return (std::uint64_t(bx) << 32) | by;
+  std::array<std::uint32_t, 3> Bits;
+
+  explicit PointKey(const float p[3]) { std::memcpy(this->Bits.data(), p, sizeof(this->Bits)); }
+  bool operator==(const PointKey& other) const { return this->Bits == other.Bits; }
+};
+
+struct PointKeyHash
+{
+  std::size_t operator()(const PointKey& key) const
+  {
+    std::uint64_t h = key.Bits[0];
+    h = h * 0x9E3779B97F4A7C15ull ^ key.Bits[1];
+    h = h * 0x9E3779B97F4A7C15ull ^ key.Bits[2];
+    return std::size_t(h ^ (h >> 29));
+  }
+};
+
+using PointMap = std::unordered_map<PointKey, std::uint32_t, PointKeyHash>;
+
+bool IsGridPoint(const float p[3])
+{
+  return p[0] == std::floor(p[0]) && p[1] == std::floor(p[1]) && p[2] == std::floor(p[2]);
 }
 
 /// The contour of one slab in index coordinates (origin 0, spacing 1, no rotation), so the
@@ -109,6 +126,11 @@ vtkSmartPointer<vtkPolyData> ContourInIndexSpace(
   return contour->GetOutput();
 }
 
+/// Numbers the vertices of the whole surface, one number per position: a position on a slice
+/// two slabs share gets the number the lower slab gave it, and points that flying edges makes
+/// at one voxel from several edges (the iso value equals the voxel's value, or an intersection
+/// rounds onto the voxel) are one vertex, as vtkMarchingCubes would merge them. Only such grid
+/// points can coincide: any other point lies inside one edge, which makes one point.
 class SlabWelder
 {
 public:
@@ -118,9 +140,8 @@ public:
   {
   }
 
-  /// Numbers the slab's vertices (reusing those on `firstSlice` made by the slab below when
-  /// `sharesBelow`), remembers those on `lastSlice` when `sharesAbove`, and hands the new
-  /// vertices and the triangles to the sink.
+  /// Hands the slab's new vertices and its triangles to the sink. `sharesBelow`: firstSlice is
+  /// shared with the slab before; `sharesAbove`: lastSlice is shared with the next.
   void Add(vtkPolyData* surface, vtkImageData* slab, int firstSlice, int lastSlice,
     bool sharesBelow, bool sharesAbove, SlabContourStats& stats)
   {
@@ -130,15 +151,20 @@ public:
     this->Ids.resize(std::size_t(count));
     this->NewVertices.clear();
     this->Above.clear();
+    this->GridPoints.clear();
     for (vtkIdType i = 0; i < count; ++i)
     {
-      double p[3];
-      points->GetPoint(i, p);
-      const std::uint64_t key = SeamKey(p[0], p[1]);
-      if (sharesBelow && p[2] == firstSlice)
+      double position[3];
+      points->GetPoint(i, position);
+      const float p[3] = { float(position[0]), float(position[1]), float(position[2]) };
+      const PointKey key(p);
+      PointMap* shared = sharesBelow && p[2] == float(firstSlice) ? &this->Below
+        : IsGridPoint(p)                                          ? &this->GridPoints
+                                                                  : nullptr;
+      if (shared)
       {
-        const auto found = this->Below.find(key);
-        if (found != this->Below.end())
+        const auto found = shared->find(key);
+        if (found != shared->end())
         {
           this->Ids[std::size_t(i)] = found->second;
           continue;
@@ -150,20 +176,23 @@ public:
       }
       const std::uint32_t id = std::uint32_t(this->NextId++);
       this->Ids[std::size_t(i)] = id;
+      if (shared)
+      {
+        shared->emplace(key, id);
+      }
+      if (sharesAbove && p[2] == float(lastSlice))
+      {
+        this->Above.emplace(key, id);
+      }
       for (int row = 0; row < 3; ++row)
       {
         const double* m = toWorld + 4 * row;
         this->NewVertices.push_back(
           ToFloatCoordinate(m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3]));
       }
-      if (sharesAbove && p[2] == lastSlice)
-      {
-        this->Above.emplace(key, id);
-      }
     }
     this->Triangles.clear();
-    vtkCellArray* polys = surface->GetPolys();
-    auto cells = vtk::TakeSmartPointer(polys->NewIterator());
+    auto cells = vtk::TakeSmartPointer(surface->GetPolys()->NewIterator());
     for (cells->GoToFirstCell(); !cells->IsDoneWithTraversal(); cells->GoToNextCell())
     {
       vtkIdType size;
@@ -185,8 +214,9 @@ private:
   std::string Name;
   ContourSink& Sink;
   std::uint64_t NextId = 0;
-  /// Vertices on the slice shared with the slab below, and on the one shared with the slab above.
-  std::unordered_map<std::uint64_t, std::uint32_t> Below, Above;
+  /// Vertices on the slice shared with the slab below and on the one shared with the slab
+  /// above; grid points of this slab elsewhere.
+  PointMap Below, Above, GridPoints;
   std::vector<std::uint32_t> Ids;
   std::vector<float> NewVertices;
   std::vector<std::uint32_t> Triangles;

@@ -1,8 +1,8 @@
 // The isosurface of a volume, contoured slab by slab so memory holds one slab of the volume and
-// its triangles, never the whole. Consecutive slabs share a slice; the vertices on that shared
-// slice are welded, so the triangles and vertices are those of contouring the whole volume at
-// once (same cells, same marching cubes cases): the surface has no gap, no duplicate and no
-// extra boundary at the seams.
+// its triangles, never the whole. Consecutive slabs share a slice and the vertices on that
+// slice are welded, so the triangles are those of contouring the whole volume at once (same
+// cells, same marching cubes cases) and the surface has no gap, no duplicate and no extra
+// boundary at the seams. Vertices are one per position, as vtkMarchingCubes merges them.
 #ifndef atpSlabContour_h
 #define atpSlabContour_h
 
@@ -41,10 +41,11 @@ struct SlabContourStats
 constexpr int DefaultSlabSlices = 64;
 
 /// Contours `volume` at `isoValue` (vtkFlyingEdges3D on each slab of `slabSlices` slices, at
-/// least 2) into `sink`, in order of increasing z. Vertices on a shared slice come from the
-/// first slab that makes them; a vertex exactly at a voxel (iso equal to the voxel's value)
-/// made by several edges there is made once, where the whole-volume contour makes one per edge
-/// (such triangles have zero area). Throws InputError naming the volume: multi-component or
+/// least 2) into `sink`, in order of increasing z. The triangles are those of vtkFlyingEdges3D
+/// on the whole volume; the vertices are its points welded by position (in voxel coordinates,
+/// as floats): flying edges makes one point per edge, so where the iso value equals a voxel's
+/// value several coincide there and its surface would be open. Throws InputError naming the
+/// volume: multi-component or
 /// missing scalars, a NaN or infinite voxel, fewer than 2 voxels along an axis, no surface at
 /// `isoValue` (the message gives the data range), or more than 2^32-1 vertices.
 VTKATPIO_EXPORT SlabContourStats ContourSlabs(

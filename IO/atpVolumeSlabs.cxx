@@ -5,11 +5,13 @@
 #include "atpVtkErrors.h"
 
 #include <vtkAlgorithm.h>
+#include <vtkExecutive.h>
 #include <vtkImageReader2.h>
 #include <vtkInformation.h>
 #include <vtkNIFTIImageReader.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkXMLImageDataReader.h>
+#include <vtkXMLReader.h>
 
 #include <algorithm>
 #include <cctype>
@@ -82,6 +84,7 @@ vtkSmartPointer<vtkAlgorithm> OpenRaw(const InputFile& file, const RawVolumeLayo
   reader->SetFileName(file.Path().c_str());
   reader->SetFileDimensionality(3);
   reader->SetHeaderSize(0);
+  reader->FileLowerLeftOn(); // rows in file order; VTK's default flips y (image files top-down)
   reader->SetDataExtent(
     0, layout.Dimensions[0] - 1, 0, layout.Dimensions[1] - 1, 0, layout.Dimensions[2] - 1);
   reader->SetDataScalarType(VtkScalarType(layout.Type));
@@ -165,7 +168,13 @@ VolumeSlabReader::VolumeSlabReader(vtkAlgorithm* source, const std::string& name
   , Errors(vtkSmartPointer<VtkErrorCollector>::New())
   , SourceName(name)
 {
+  // The executive repeats a failed reader's error less helpfully: keep it off the console too.
   this->Source->AddObserver(vtkCommand::ErrorEvent, this->Errors);
+  this->Source->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, this->Errors);
+  if (auto* xml = vtkXMLReader::SafeDownCast(source))
+  {
+    xml->SetParserErrorObserver(this->Errors); // malformed XML
+  }
   this->Source->UpdateInformation();
   vtkInformation* info = this->Source->GetOutputInformation(0);
   if (!this->Errors->FirstError.empty() || this->Source->GetErrorCode() != 0 || !info ||
@@ -182,6 +191,7 @@ VolumeSlabReader::~VolumeSlabReader()
   if (this->Source)
   {
     this->Source->RemoveObserver(this->Errors);
+    this->Source->GetExecutive()->RemoveObserver(this->Errors);
   }
 }
 

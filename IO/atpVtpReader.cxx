@@ -16,6 +16,7 @@ vtkSmartPointer<vtkPolyData> ReadVtpFile(const std::string& path)
   vtkNew<VtkErrorCollector> errors;
   reader->AddObserver(vtkCommand::ErrorEvent, errors);
   reader->AddObserver(vtkCommand::WarningEvent, errors);
+  reader->SetParserErrorObserver(errors); // malformed XML
   reader->SetFileName(path.c_str());
   reader->Update();
   if (!errors->FirstError.empty() || reader->GetErrorCode() != 0)
