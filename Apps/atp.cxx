@@ -114,10 +114,10 @@ int Build(int argc, char** argv)
     "\n"
     "A volume (NIfTI .nii/.nii.gz, VTK .vti, or raw voxels with --dims and --type) gives the\n"
     "isosurface at --iso, contoured slab by slab (--slab slices, consecutive slabs sharing one)\n"
-    "and welded into the same surface as one whole-volume contour. Raw and .nii files are read\n"
-    "one slab at a time; .nii.gz is decompressed from the start for every slab (memory stays\n"
-    "one slab, time grows with the square of the slab count); .vti is read by VTK's XML reader,\n"
-    "whole for compressed or inline data, so very large volumes should be raw or .nii.");
+    "and welded into the surface of one whole-volume contour, one vertex per position. Every\n"
+    "format is read one slab at a time through VTK's readers, so memory holds one slab; but a\n"
+    ".nii.gz is decompressed from its start for every slab (time grows with the square of the\n"
+    "slab count: use a large --slab, or gunzip it first).");
   cl.AddPositional("INPUT", "mesh file (.ply ASCII or binary, .obj, .stl, .vtp) or volume "
                             "(.nii, .nii.gz, .vti, raw)");
   cl.AddOption("output", "o", "OUT.atp", "model file to write");
