@@ -34,6 +34,12 @@ struct vtkATPBuilder::Results
 
 namespace
 {
+// Partitioning streams at several million triangles/s, simplification at about one million:
+// the shares of the progress bar follow. Contouring a volume takes the first part of the
+// partitioning's share.
+constexpr double PartitionShare = 0.15;
+constexpr double ContourShare = 0.1;
+
 double SecondsSince(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -121,15 +127,14 @@ int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, v
 
     this->ExpectedTriangles = source->ExpectedTriangles();
     const double expected = double(this->ExpectedTriangles);
-    // Partitioning streams at several million triangles/s, simplification at about one
-    // million: the shares of the progress bar follow.
-    constexpr double PartitionShare = 0.15;
+    const double partitionStart = this->Last->FromVolume ? ContourShare : 0;
     this->SetProgressText("partitioning");
-    this->UpdateProgress(0);
+    this->UpdateProgress(partitionStart);
     auto partitioner = atp::PartitionStream(*source, options, [&](std::uint64_t done) {
       if (expected > 0)
       {
-        this->UpdateProgress(PartitionShare * std::min(1.0, double(done) / expected));
+        this->UpdateProgress(partitionStart +
+          (PartitionShare - partitionStart) * std::min(1.0, double(done) / expected));
       }
       this->ThrowIfAborted();
     });
@@ -224,7 +229,13 @@ std::unique_ptr<atp::TriangleSource> vtkATPBuilder::OpenSource(vtkInformationVec
   {
     options.RawLayout = *this->RawLayout;
   }
-  auto source = atp::OpenVolumeTriangleSource(path, options, scratch, &this->Last->Volume);
+  this->SetProgressText("contouring");
+  this->UpdateProgress(0);
+  auto source = atp::OpenVolumeTriangleSource(
+    path, options, scratch, &this->Last->Volume, [this](double fraction) {
+      this->UpdateProgress(ContourShare * fraction);
+      this->ThrowIfAborted();
+    });
   this->Last->FromVolume = true;
   return source;
 }

@@ -223,8 +223,8 @@ private:
 };
 } // namespace
 
-SlabContourStats ContourSlabs(
-  VolumeSlabReader& volume, double isoValue, int slabSlices, ContourSink& sink)
+SlabContourStats ContourSlabs(VolumeSlabReader& volume, double isoValue, int slabSlices,
+  ContourSink& sink, const std::function<void(double)>& progress)
 {
   const std::string& name = volume.Name();
   const std::array<int, 6>& whole = volume.WholeExtent();
@@ -256,6 +256,10 @@ SlabContourStats ContourSlabs(
     vtkSmartPointer<vtkPolyData> surface = ContourInIndexSpace(slab, scalars, isoValue);
     welder.Add(surface, slab, first, last, first > whole[4], last < whole[5], stats);
     ++stats.Slabs;
+    if (progress)
+    {
+      progress(double(last - whole[4]) / double(whole[5] - whole[4]));
+    }
   }
   if (stats.Triangles == 0)
   {

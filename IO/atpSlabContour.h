@@ -11,6 +11,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 
 namespace atp
 {
@@ -47,9 +48,11 @@ constexpr int DefaultSlabSlices = 64;
 /// value several coincide there and its surface would be open. Throws InputError naming the
 /// volume: multi-component or
 /// missing scalars, a NaN or infinite voxel, fewer than 2 voxels along an axis, no surface at
-/// `isoValue` (the message gives the data range), or more than 2^32-1 vertices.
-VTKATPIO_EXPORT SlabContourStats ContourSlabs(
-  VolumeSlabReader& volume, double isoValue, int slabSlices, ContourSink& sink);
+/// `isoValue` (the message gives the data range), or more than 2^32-1 vertices. `progress`,
+/// when given, is called after each slab with the fraction of the volume done (and may throw
+/// to cancel).
+VTKATPIO_EXPORT SlabContourStats ContourSlabs(VolumeSlabReader& volume, double isoValue,
+  int slabSlices, ContourSink& sink, const std::function<void(double)>& progress = nullptr);
 
 } // namespace atp
 

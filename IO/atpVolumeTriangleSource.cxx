@@ -93,11 +93,11 @@ private:
 
 std::unique_ptr<TriangleSource> OpenVolumeTriangleSource(VolumeSlabReader& volume,
   const VolumeOptions& options, const std::string& scratchDirectory,
-  SlabContourStats* contourStats)
+  SlabContourStats* contourStats, const std::function<void(double)>& progress)
 {
   auto surface = std::make_unique<ScratchSurface>(scratchDirectory);
   const SlabContourStats stats =
-    ContourSlabs(volume, options.IsoValue, options.SlabSlices, *surface);
+    ContourSlabs(volume, options.IsoValue, options.SlabSlices, *surface, progress);
   if (contourStats)
   {
     *contourStats = stats;
@@ -107,11 +107,11 @@ std::unique_ptr<TriangleSource> OpenVolumeTriangleSource(VolumeSlabReader& volum
 
 std::unique_ptr<TriangleSource> OpenVolumeTriangleSource(const std::string& path,
   const VolumeOptions& options, const std::string& scratchDirectory,
-  SlabContourStats* contourStats)
+  SlabContourStats* contourStats, const std::function<void(double)>& progress)
 {
   VolumeSlabReader volume =
     VolumeSlabReader::Open(path, options.Raw ? &options.RawLayout : nullptr);
-  return OpenVolumeTriangleSource(volume, options, scratchDirectory, contourStats);
+  return OpenVolumeTriangleSource(volume, options, scratchDirectory, contourStats, progress);
 }
 
 } // namespace atp

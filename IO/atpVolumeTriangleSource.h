@@ -9,6 +9,7 @@
 #include "atpVolumeSlabs.h"
 #include "vtkATPIOModule.h"
 
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -26,15 +27,18 @@ struct VolumeOptions
 
 /// The surface of `volume` at options.IsoValue. Contours the whole volume before returning (the
 /// bounds must be known before the first triangle); `contourStats`, when given, receives the
-/// figures. Throws InputError naming the volume.
+/// figures, `progress` the fraction contoured (see ContourSlabs). Throws InputError naming the
+/// volume.
 VTKATPIO_EXPORT std::unique_ptr<TriangleSource> OpenVolumeTriangleSource(VolumeSlabReader& volume,
   const VolumeOptions& options, const std::string& scratchDirectory,
-  SlabContourStats* contourStats = nullptr);
+  SlabContourStats* contourStats = nullptr,
+  const std::function<void(double)>& progress = nullptr);
 
 /// The same for a volume file (VolumeSlabReader::Open).
 VTKATPIO_EXPORT std::unique_ptr<TriangleSource> OpenVolumeTriangleSource(const std::string& path,
   const VolumeOptions& options, const std::string& scratchDirectory,
-  SlabContourStats* contourStats = nullptr);
+  SlabContourStats* contourStats = nullptr,
+  const std::function<void(double)>& progress = nullptr);
 
 } // namespace atp
 

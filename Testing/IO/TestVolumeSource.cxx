@@ -35,6 +35,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -417,6 +418,28 @@ TEST_F(VolumeSource, IsoValueEqualToVoxelValuesStillGivesAClosedSurface)
     EXPECT_EQ(source->Stats().TrianglesEmitted + source->Stats().DegenerateDropped,
       WholeContour(image, 70).Triangles.size());
   }
+}
+
+TEST_F(VolumeSource, ProgressAfterEverySlabAndCancelling)
+{
+  const auto image = Sample({ { 8, 9, 20 } }, Sphere(4, 4, 9.5), VTK_FLOAT);
+  vtkNew<vtkTrivialProducer> producer;
+  producer->SetOutput(image);
+  atp::VolumeSlabReader volume(producer, "image");
+  SurfaceSink sink;
+  std::vector<double> fractions;
+  atp::ContourSlabs(volume, 3.3, 5, sink, [&](double f) { fractions.push_back(f); });
+  EXPECT_EQ(fractions, (std::vector<double>{ 4.0 / 19, 8.0 / 19, 12.0 / 19, 16.0 / 19, 1.0 }));
+  SurfaceSink cancelled;
+  EXPECT_THROW(atp::ContourSlabs(volume, 3.3, 5, cancelled,
+                 [](double f) {
+                   if (f > 0.5)
+                   {
+                     throw std::runtime_error("cancelled");
+                   }
+                 }),
+    std::runtime_error);
+  EXPECT_LT(cancelled.Mesh.Triangles.size(), sink.Mesh.Triangles.size());
 }
 
 // ---------------------------------------------------------------------------------------------
