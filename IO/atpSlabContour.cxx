@@ -240,6 +240,9 @@ SlabContourStats ContourSlabs(VolumeSlabReader& volume, double isoValue, int sla
       std::to_string(stats.Dimensions[2]));
   }
   const int step = std::max(2, slabSlices) - 1;
+  // The voxels hold stored values; the iso value and the range are in the values they stand for.
+  const double slope = volume.ValueSlope(), intercept = volume.ValueIntercept();
+  const double storedIsoValue = (isoValue - intercept) / slope;
   stats.DataRange = { { HUGE_VAL, -HUGE_VAL } };
   SlabWelder welder(name, sink);
   for (int first = whole[4]; first < whole[5]; first += step)
@@ -251,9 +254,10 @@ SlabContourStats ContourSlabs(VolumeSlabReader& volume, double isoValue, int sla
     CheckFinite(vtkDoubleArray::FastDownCast(scalars), slab, name);
     double range[2];
     scalars->GetRange(range, 0);
-    stats.DataRange[0] = std::min(stats.DataRange[0], range[0]);
-    stats.DataRange[1] = std::max(stats.DataRange[1], range[1]);
-    vtkSmartPointer<vtkPolyData> surface = ContourInIndexSpace(slab, scalars, isoValue);
+    const double a = slope * range[0] + intercept, b = slope * range[1] + intercept;
+    stats.DataRange[0] = std::min(stats.DataRange[0], std::min(a, b));
+    stats.DataRange[1] = std::max(stats.DataRange[1], std::max(a, b));
+    vtkSmartPointer<vtkPolyData> surface = ContourInIndexSpace(slab, scalars, storedIsoValue);
     welder.Add(surface, slab, first, last, first > whole[4], last < whole[5], stats);
     ++stats.Slabs;
     if (progress)

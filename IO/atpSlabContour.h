@@ -33,7 +33,9 @@ struct SlabContourStats
 {
   std::array<int, 3> Dimensions{ { 0, 0, 0 } }; ///< voxels along x, y, z
   int Slabs = 0;
-  std::array<double, 2> DataRange{ { 0, 0 } }; ///< smallest and largest voxel value
+  /// Smallest and largest voxel value (as VolumeSlabReader::ValueSlope and ValueIntercept
+  /// scale the stored values, like the iso value).
+  std::array<double, 2> DataRange{ { 0, 0 } };
   std::uint64_t Vertices = 0;
   std::uint64_t Triangles = 0;
 };

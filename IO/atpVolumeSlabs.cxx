@@ -63,22 +63,22 @@ std::uint64_t VoxelBytes(VoxelType type)
 /// A raw file read by vtkImageReader2, which reads only the rows of the requested extent.
 vtkSmartPointer<vtkAlgorithm> OpenRaw(const InputFile& file, const RawVolumeLayout& layout)
 {
-  std::uint64_t voxels = 1;
+  std::uint64_t expected = VoxelBytes(layout.Type);
+  bool overflow = false;
   for (int axis = 0; axis < 3; ++axis)
   {
     if (layout.Dimensions[axis] < 1)
     {
       file.Fail("raw volume dimensions must be positive");
     }
-    voxels *= std::uint64_t(layout.Dimensions[axis]);
+    overflow |= __builtin_mul_overflow(expected, std::uint64_t(layout.Dimensions[axis]), &expected);
   }
-  const std::uint64_t expected = voxels * VoxelBytes(layout.Type);
-  if (file.Size() != expected)
+  if (overflow || file.Size() != expected)
   {
     file.Fail("is " + std::to_string(file.Size()) + " bytes, but " +
       std::to_string(layout.Dimensions[0]) + "x" + std::to_string(layout.Dimensions[1]) + "x" +
       std::to_string(layout.Dimensions[2]) + " " + VoxelTypeName(layout.Type) + " voxels are " +
-      std::to_string(expected) + " bytes");
+      (overflow ? std::string("more than 2^64") : std::to_string(expected)) + " bytes");
   }
   auto reader = vtkSmartPointer<vtkImageReader2>::New();
   reader->SetFileName(file.Path().c_str());
@@ -151,6 +151,11 @@ VolumeSlabReader VolumeSlabReader::Open(const std::string& path, const RawVolume
     reader->SetFileName(path.c_str());
     VolumeSlabReader volume(reader, path);
     volume.MirroredSlices = reader->GetQFac() < 0;
+    if (reader->GetRescaleSlope() != 0) // 0: no scaling (NIfTI-1)
+    {
+      volume.Slope = reader->GetRescaleSlope();
+      volume.Intercept = reader->GetRescaleIntercept();
+    }
     return volume;
   }
   if (EndsWith(Lowercase(path), ".vti"))

@@ -65,6 +65,11 @@ public:
   /// The whole volume's extent (x0, x1, y0, y1, z0, z1), inclusive.
   const std::array<int, 6>& WholeExtent() const { return this->Whole; }
 
+  /// The values the voxels stand for are slope * stored + intercept (NIfTI's scl_slope and
+  /// scl_inter, which VTK's reader leaves unapplied); 1 and 0 for other formats.
+  double ValueSlope() const { return this->Slope; }
+  double ValueIntercept() const { return this->Intercept; }
+
   /// Slices [firstSlice, lastSlice] of the whole extent, exactly that extent, laid out as in the
   /// whole volume. Throws InputError with the reader's message when reading fails.
   vtkSmartPointer<vtkImageData> ReadSlab(int firstSlice, int lastSlice);
@@ -77,6 +82,8 @@ private:
   /// vtkNIFTIImageReader with a negative qfac stores the slices of each request in reverse:
   /// the slices of slab [a, b] are then those it gives for the mirrored request.
   bool MirroredSlices = false;
+  double Slope = 1;
+  double Intercept = 0;
 };
 
 } // namespace atp

@@ -584,6 +584,25 @@ TEST_F(VolumeSource, NiftiWithNegativeQfacGivesTheWholeVolumeSurface)
   }
 }
 
+TEST_F(VolumeSource, NiftiIsoValueAndRangeAreInRescaledValues)
+{
+  // scl_slope 2 and scl_inter 10: stored value 5 stands for 20.
+  const auto image = Sample({ { 12, 13, 14 } }, Sphere(5.5, 6.1, 6.9), VTK_FLOAT);
+  vtkNew<vtkNIFTIImageWriter> writer;
+  writer->SetInputData(image);
+  writer->SetRescaleSlope(2);
+  writer->SetRescaleIntercept(10);
+  writer->SetFileName(this->Path("scaled.nii").c_str());
+  writer->Write();
+  atp::VolumeSlabReader volume = atp::VolumeSlabReader::Open(this->Path("scaled.nii"));
+  EXPECT_EQ(volume.ValueSlope(), 2);
+  EXPECT_EQ(volume.ValueIntercept(), 10);
+  atp::SlabContourStats stats;
+  ExpectWholeVolumeSurface(SlabContour(volume, 20, 4, &stats), image, 5, "scaled");
+  EXPECT_NEAR(stats.DataRange[0], 2 * image->GetPointData()->GetScalars()->GetRange()[0] + 10, 1e-5);
+  EXPECT_NEAR(stats.DataRange[1], 2 * image->GetPointData()->GetScalars()->GetRange()[1] + 10, 1e-5);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Bad input
 
@@ -596,6 +615,10 @@ TEST_F(VolumeSource, Errors)
   this->ExpectError(this->Path("missing.raw"), "cannot open", 0.5, &layout);
   this->ExpectError(this->Write("short.raw", std::string(100, '\0')),
     "is 100 bytes, but 4x4x4 uint16 voxels are 128 bytes", 0.5, &layout);
+  atp::RawVolumeLayout huge = layout;
+  huge.Dimensions = { { 1 << 30, 1 << 30, 1 << 30 } };
+  this->ExpectError(this->Path("short.raw"),
+    "1073741824x1073741824x1073741824 uint16 voxels are more than 2^64 bytes", 0.5, &huge);
   this->ExpectError(this->Write("volume.img3", "data"), "not a volume file");
   this->ExpectError(this->Write("garbage.nii", std::string(400, 'x')), "not a readable volume");
   this->ExpectError(this->Write("garbage.vti", "<VTKFile type=\"ImageData\">"), "not a readable volume");
