@@ -7,7 +7,9 @@
 #include "atpPartitioner.h"
 #include "atpProgressReport.h"
 #include "atpSurfaceGenerator.h"
+#include "atpSlabContour.h"
 #include "atpTriangleSource.h"
+#include "atpVolumeSlabs.h"
 #include "vtkATPBuilder.h"
 
 #include "vtkCallbackCommand.h"
@@ -15,6 +17,7 @@
 #include "vtkNew.h"
 
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
@@ -38,6 +41,68 @@ std::vector<std::string> Rest(int argc, char** argv)
   return std::vector<std::string>(argv + 2, argv + argc);
 }
 
+/// The volume options of atp build: mistakes are usage errors, caught before reading anything.
+void SetVolumeOptions(const CommandLine& cl, vtkATPBuilder* builder)
+{
+  const std::string& input = cl.Positional(0);
+  const bool raw = cl.Has("dims");
+  for (const char* rawOnly : { "type", "spacing", "origin", "big-endian" })
+  {
+    if (cl.Has(rawOnly) && !raw)
+    {
+      throw atp::UsageError(std::string("--") + rawOnly + " is for raw volumes, which need --dims");
+    }
+  }
+  if (!raw && !atp::IsVolumeFileName(input))
+  {
+    if (cl.Has("iso") || cl.Has("slab"))
+    {
+      throw atp::UsageError(std::string("--") + (cl.Has("iso") ? "iso" : "slab") +
+        " is for volumes (.nii, .nii.gz, .vti, or raw with --dims); " + input + " is a mesh");
+    }
+    return;
+  }
+  if (!cl.Has("iso"))
+  {
+    throw atp::UsageError("a volume needs --iso VALUE, the voxel value of the surface");
+  }
+  builder->SetIsoValue(cl.GetNumber("iso", -1e300, 1e300));
+  builder->SetSlabSlices(int(cl.GetInteger("slab", 2, 1 << 20)));
+  if (!raw)
+  {
+    return;
+  }
+  atp::RawVolumeLayout layout;
+  const std::vector<double> dims = cl.GetNumbers("dims", 3);
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (dims[axis] < 1 || dims[axis] > (1 << 30) || dims[axis] != std::floor(dims[axis]))
+    {
+      throw atp::UsageError("--dims must be 3 whole numbers from 1 to 2^30, got '" +
+        cl.Get("dims") + "'");
+    }
+    layout.Dimensions[axis] = int(dims[axis]);
+  }
+  if (!atp::ParseVoxelType(cl.Get("type"), layout.Type))
+  {
+    throw atp::UsageError(
+      "--type must be uint8, int16, uint16 or float32, got '" + cl.Get("type") + "'");
+  }
+  const std::vector<double> spacing = cl.GetNumbers("spacing", 3);
+  const std::vector<double> origin = cl.GetNumbers("origin", 3);
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (!(spacing[axis] > 0))
+    {
+      throw atp::UsageError("--spacing must be 3 positive numbers, got '" + cl.Get("spacing") + "'");
+    }
+    layout.Spacing[axis] = spacing[axis];
+    layout.Origin[axis] = origin[axis];
+  }
+  layout.BigEndian = cl.Has("big-endian");
+  builder->SetRawVolumeLayout(&layout);
+}
+
 int Build(int argc, char** argv)
 {
   CommandLine cl("build",
@@ -45,9 +110,25 @@ int Build(int argc, char** argv)
     "it from disk: triangles are sorted into a forest of tetrahedra (6 roots, longest-edge\n"
     "bisection, diamonds split whole) with buckets on disk, then every diamond, bottom-up,\n"
     "simplifies its children's patches with its external boundary locked, and the patches are\n"
-    "encoded into OUT. OUT appears only when complete; an existing OUT is replaced atomically.");
-  cl.AddPositional("INPUT", "mesh file: .ply (ASCII or binary), .obj, .stl, .vtp");
+    "encoded into OUT. OUT appears only when complete; an existing OUT is replaced atomically.\n"
+    "\n"
+    "A volume (NIfTI .nii/.nii.gz, VTK .vti, or raw voxels with --dims and --type) gives the\n"
+    "isosurface at --iso, contoured slab by slab (--slab slices, consecutive slabs sharing one)\n"
+    "and welded into the surface of one whole-volume contour, one vertex per position. Every\n"
+    "format is read one slab at a time through VTK's readers, so memory holds one slab; but a\n"
+    ".nii.gz is decompressed from its start for every slab (time grows with the square of the\n"
+    "slab count: use a large --slab, or gunzip it first).");
+  cl.AddPositional("INPUT", "mesh file (.ply ASCII or binary, .obj, .stl, .vtp) or volume "
+                            "(.nii, .nii.gz, .vti, raw)");
   cl.AddOption("output", "o", "OUT.atp", "model file to write");
+  cl.AddOption("iso", "", "VALUE", "volumes: the voxel value of the surface (required)");
+  cl.AddOption("slab", "", "N", "volumes: Z slices contoured at a time",
+    std::to_string(atp::DefaultSlabSlices));
+  cl.AddOption("dims", "", "X,Y,Z", "raw volumes: voxels along x, y and z (x fastest in the file)");
+  cl.AddOption("type", "", "TYPE", "raw volumes: uint8, int16, uint16 or float32", "uint8");
+  cl.AddOption("spacing", "", "SX,SY,SZ", "raw volumes: voxel size", "1,1,1");
+  cl.AddOption("origin", "", "OX,OY,OZ", "raw volumes: position of the first voxel", "0,0,0");
+  cl.AddFlag("big-endian", "raw volumes: voxels are big-endian (default little-endian)");
   cl.AddOption("leaf-capacity", "", "N", "most triangles in a leaf tetrahedron", "4000");
   cl.AddOption("patch-budget", "", "N", "most triangles in a tetrahedron of a simplified level",
     "2000");
@@ -67,6 +148,7 @@ int Build(int argc, char** argv)
 
   vtkNew<vtkATPBuilder> builder;
   builder->SetInputFileName(cl.Positional(0).c_str());
+  SetVolumeOptions(cl, builder);
   builder->SetFileName(cl.Get("output").c_str());
   builder->SetLeafCapacity(int(cl.GetInteger("leaf-capacity", 1, 1 << 30)));
   builder->SetPatchBudget(int(cl.GetInteger("patch-budget", 16, 1 << 20)));
@@ -115,6 +197,15 @@ int Build(int argc, char** argv)
   }
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (const atp::SlabContourStats* volume = builder->GetVolumeStats())
+  {
+    std::printf("volume: %dx%dx%d voxels, values %g to %g, isosurface at %g in %d slabs: %s "
+                "vertices, %s triangles\n",
+      volume->Dimensions[0], volume->Dimensions[1], volume->Dimensions[2], volume->DataRange[0],
+      volume->DataRange[1], builder->GetIsoValue(), volume->Slabs,
+      FormatCount(double(volume->Vertices)).c_str(),
+      FormatCount(double(volume->Triangles)).c_str());
+  }
   const atp::InputStats& in = builder->GetInputStats();
   const atp::PartitionStats& p = builder->GetPartitionStats();
   std::printf("input: %s vertices, %s faces, %s triangles (%llu degenerate dropped, %llu "

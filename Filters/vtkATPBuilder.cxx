@@ -4,6 +4,7 @@
 #include "atpStreamPartition.h"
 #include "atpTriangleSource.h"
 #include "atpPolyDataTriangleSource.h"
+#include "atpVolumeTriangleSource.h"
 
 #include "vtkAlgorithmOutput.h"
 #include "vtkCommand.h"
@@ -14,6 +15,8 @@
 #include "vtkPolyData.h"
 
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 
 vtkStandardNewMacro(vtkATPBuilder);
@@ -23,12 +26,20 @@ struct vtkATPBuilder::Results
   atp::InputStats Input;
   atp::PartitionStats Partition;
   atp::ConstructionStats Construction;
+  atp::SlabContourStats Volume;
+  bool FromVolume = false;
   double PartitionSeconds = 0;
   double ConstructionSeconds = 0;
 };
 
 namespace
 {
+// Partitioning streams at several million triangles/s, simplification at about one million:
+// the shares of the progress bar follow. Contouring a volume takes the first part of the
+// partitioning's share.
+constexpr double PartitionShare = 0.15;
+constexpr double ContourShare = 0.1;
+
 double SecondsSince(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -36,7 +47,9 @@ double SecondsSince(std::chrono::steady_clock::time_point start)
 }
 
 vtkATPBuilder::vtkATPBuilder()
-  : Last(std::make_unique<Results>())
+  : IsoValue(std::numeric_limits<double>::quiet_NaN())
+  , SlabSlices(atp::DefaultSlabSlices)
+  , Last(std::make_unique<Results>())
 {
   this->SetNumberOfInputPorts(1);
   this->SetNumberOfOutputPorts(0);
@@ -47,6 +60,12 @@ vtkATPBuilder::~vtkATPBuilder()
   this->SetInputFileName(nullptr);
   this->SetFileName(nullptr);
   this->SetScratchDirectory(nullptr);
+}
+
+void vtkATPBuilder::SetRawVolumeLayout(const atp::RawVolumeLayout* layout)
+{
+  this->RawLayout = layout ? std::make_unique<atp::RawVolumeLayout>(*layout) : nullptr;
+  this->Modified();
 }
 
 void vtkATPBuilder::SetInputData(vtkPolyData* mesh)
@@ -99,16 +118,7 @@ int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, v
   try
   {
     auto phaseStart = std::chrono::steady_clock::now(); // opening reads the input once
-    std::unique_ptr<atp::TriangleSource> source;
-    if (this->InputFileName)
-    {
-      source = atp::OpenTriangleSource(this->InputFileName, scratch);
-    }
-    else
-    {
-      vtkPolyData* mesh = vtkPolyData::GetData(inputs[0]);
-      source = atp::OpenPolyDataTriangleSource(mesh, "input polydata", scratch);
-    }
+    std::unique_ptr<atp::TriangleSource> source = this->OpenSource(inputs);
     atp::PartitionOptions options;
     options.LeafCapacity = std::uint32_t(this->LeafCapacity);
     options.BucketMemoryBytes = std::size_t(this->BucketMemoryMiB) << 20;
@@ -117,15 +127,14 @@ int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, v
 
     this->ExpectedTriangles = source->ExpectedTriangles();
     const double expected = double(this->ExpectedTriangles);
-    // Partitioning streams at several million triangles/s, simplification at about one
-    // million: the shares of the progress bar follow.
-    constexpr double PartitionShare = 0.15;
+    const double partitionStart = this->Last->FromVolume ? ContourShare : 0;
     this->SetProgressText("partitioning");
-    this->UpdateProgress(0);
+    this->UpdateProgress(partitionStart);
     auto partitioner = atp::PartitionStream(*source, options, [&](std::uint64_t done) {
       if (expected > 0)
       {
-        this->UpdateProgress(PartitionShare * std::min(1.0, double(done) / expected));
+        this->UpdateProgress(partitionStart +
+          (PartitionShare - partitionStart) * std::min(1.0, double(done) / expected));
       }
       this->ThrowIfAborted();
     });
@@ -184,6 +193,58 @@ double vtkATPBuilder::GetConstructionSeconds() const
   return this->Last->ConstructionSeconds;
 }
 
+std::unique_ptr<atp::TriangleSource> vtkATPBuilder::OpenSource(vtkInformationVector** inputs)
+{
+  const std::string scratch = this->ScratchDirectory ? this->ScratchDirectory : "";
+  const bool isoValueSet = !std::isnan(this->IsoValue);
+  this->Last->FromVolume = false;
+  if (!this->InputFileName)
+  {
+    if (isoValueSet)
+    {
+      throw std::invalid_argument("an IsoValue is only for a volume InputFileName");
+    }
+    vtkPolyData* mesh = vtkPolyData::GetData(inputs[0]);
+    return atp::OpenPolyDataTriangleSource(mesh, "input polydata", scratch);
+  }
+  const std::string path = this->InputFileName;
+  if (!this->RawLayout && !atp::IsVolumeFileName(path))
+  {
+    if (isoValueSet)
+    {
+      throw std::invalid_argument(path + ": an iso value is only for volumes (.nii, .nii.gz, "
+                                         ".vti or raw), this is a mesh");
+    }
+    return atp::OpenTriangleSource(path, scratch);
+  }
+  if (!isoValueSet)
+  {
+    throw std::invalid_argument(path + ": a volume needs an iso value (the surface to build)");
+  }
+  atp::VolumeOptions options;
+  options.IsoValue = this->IsoValue;
+  options.SlabSlices = this->SlabSlices;
+  options.Raw = this->RawLayout != nullptr;
+  if (this->RawLayout)
+  {
+    options.RawLayout = *this->RawLayout;
+  }
+  this->SetProgressText("contouring");
+  this->UpdateProgress(0);
+  auto source = atp::OpenVolumeTriangleSource(
+    path, options, scratch, &this->Last->Volume, [this](double fraction) {
+      this->UpdateProgress(ContourShare * fraction);
+      this->ThrowIfAborted();
+    });
+  this->Last->FromVolume = true;
+  return source;
+}
+
+const atp::SlabContourStats* vtkATPBuilder::GetVolumeStats() const
+{
+  return this->Last->FromVolume ? &this->Last->Volume : nullptr;
+}
+
 void vtkATPBuilder::ThrowIfAborted()
 {
   if (this->GetAbortExecute())
@@ -198,6 +259,9 @@ void vtkATPBuilder::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InputFileName: " << (this->InputFileName ? this->InputFileName : "(none)")
      << "\n";
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
+  os << indent << "IsoValue: " << this->IsoValue << "\n";
+  os << indent << "SlabSlices: " << this->SlabSlices << "\n";
+  os << indent << "RawVolumeLayout: " << (this->RawLayout ? "set" : "(none)") << "\n";
   os << indent << "LeafCapacity: " << this->LeafCapacity << "\n";
   os << indent << "PatchBudget: " << this->PatchBudget << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";

@@ -3,7 +3,9 @@
  * @brief   Builds an Adaptive TetraPuzzles multiresolution model from a triangle mesh.
  *
  * Input is either a mesh file streamed from disk (SetInputFileName: PLY, OBJ, STL, VTP), which
- * never needs to fit in memory, or a vtkPolyData on input port 0; the model is written to
+ * never needs to fit in memory, a volume file (NIfTI .nii/.nii.gz, VTK .vti, or raw voxels
+ * described by SetRawVolumeLayout) whose isosurface at IsoValue is contoured slab by slab, or a
+ * vtkPolyData on input port 0; the model is written to
  * FileName (.atp), like a vtkWriter. The triangles are partitioned out of core into a forest of
  * tetrahedra (longest-edge bisection, 6 roots): each triangle goes to the leaf holding its
  * centroid and a leaf with more than LeafCapacity triangles splits with its whole diamond. Then,
@@ -31,6 +33,9 @@ namespace atp
 struct ConstructionStats;
 struct PartitionStats;
 struct InputStats;
+struct RawVolumeLayout;
+struct SlabContourStats;
+class TriangleSource;
 }
 
 class VTKATPFILTERS_EXPORT vtkATPBuilder : public vtkAlgorithm
@@ -48,6 +53,23 @@ public:
   vtkSetStringMacro(InputFileName);
   vtkGetStringMacro(InputFileName);
   ///@}
+
+  ///@{
+  /// For a volume InputFileName: the value whose isosurface is built. Required for volumes and
+  /// refused for meshes; NaN (the default) means none.
+  vtkSetMacro(IsoValue, double);
+  vtkGetMacro(IsoValue, double);
+  ///@}
+
+  ///@{
+  /// Z slices per slab when contouring a volume (default 64, at least 2): memory holds one slab.
+  vtkSetClampMacro(SlabSlices, int, 2, 1 << 20);
+  vtkGetMacro(SlabSlices, int);
+  ///@}
+
+  /// Reads InputFileName as raw voxels of this layout, whatever its extension (nullptr, the
+  /// default: the extension says what the file is).
+  void SetRawVolumeLayout(const atp::RawVolumeLayout* layout);
 
   ///@{
   /// The model file to write (.atp).
@@ -100,6 +122,8 @@ public:
   const atp::InputStats& GetInputStats() const;
   const atp::PartitionStats& GetPartitionStats() const;
   const atp::ConstructionStats& GetConstructionStats() const;
+  /// The volume's figures when the input was a volume; nullptr otherwise.
+  const atp::SlabContourStats* GetVolumeStats() const;
   /// Wall-clock seconds of the partitioning phase (reading included) and of construction.
   double GetPartitionSeconds() const;
   double GetConstructionSeconds() const;
@@ -119,6 +143,8 @@ protected:
   char* InputFileName = nullptr;
   char* FileName = nullptr;
   char* ScratchDirectory = nullptr;
+  double IsoValue;
+  int SlabSlices;
   int LeafCapacity = 4000;
   int PatchBudget = 2000;
   int NumberOfThreads = 0;
@@ -129,8 +155,12 @@ private:
   vtkATPBuilder(const vtkATPBuilder&) = delete;
   void operator=(const vtkATPBuilder&) = delete;
 
+  /// The triangles of the input file or of the polydata on port 0; throws std::exception.
+  std::unique_ptr<atp::TriangleSource> OpenSource(vtkInformationVector** inputs);
+
   struct Results;
   std::unique_ptr<Results> Last;
+  std::unique_ptr<atp::RawVolumeLayout> RawLayout;
   std::string ErrorMessage;
 };
 

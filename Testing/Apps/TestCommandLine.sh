@@ -109,5 +109,53 @@ expect 0 "wrote .*g.ply: [0-9]+ triangles" -- "$atp" generate -n 5000 --holes 2 
 expect 0 "boundary edges" -- "$atp" build "$work/g.ply" -o "$work/g.atp" --quiet
 expect 1 "cannot create" -- "$atp" generate -n 5000 -o "$work/no/such/dir/g.ply"
 
+# Volumes: the isosurface of a raw file (any voxel type and byte order, with spacing and origin)
+# or a .vti, contoured in slabs; made here with perl (raw) and as text (an ASCII .vti).
+expect 0 "--iso VALUE" -- "$atp" build --help
+perl -e 'for $k (0..23) { for $j (0..23) { for $i (0..23) {
+  $d = sqrt(($i - 11.5)**2 + ($j - 12.2)**2 + ($k - 11.8)**2); $v = int(250 - 20 * $d);
+  print pack("C", $v < 0 ? 0 : $v) } } }' > "$work/sphere.raw"
+expect 0 "volume: 24x24x24 voxels, values 0 to 2[0-9]{2}, isosurface at 100 in 6 slabs" -- "$atp" build "$work/sphere.raw" --dims 24,24,24 --type uint8 --iso 100 --slab 5 -o "$work/v.atp" --quiet
+expect 0 "input: .* triangles \(0 degenerate dropped, 0 boundary edges\)" -- "$atp" build "$work/sphere.raw" --dims 24,24,24 --iso 100.5 -o "$work/v.atp" --quiet
+expect 0 "v.atp: valid" -- "$atp" verify "$work/v.atp"
+perl -e 'for $k (0..19) { for $j (0..20) { for $i (0..21) {
+  $d = sqrt(($i - 10.5)**2 + ($j - 10.2)**2 + ($k - 9.8)**2);
+  print pack("s>", int(3000 - 500 * $d)) } } }' > "$work/sphere-be.raw"
+expect 0 "volume: 22x21x20 voxels, values -[0-9]+ to 2[0-9]{3}, isosurface at -1000" -- "$atp" build "$work/sphere-be.raw" --dims 22,21,20 --type int16 --big-endian --iso -1000 --spacing 2,1,0.5 --origin 100,0,0 --slab 3 -o "$work/w.atp" --quiet
+expect 0 "box \(10[0-9]\.[0-9]+ [0-9.]+ [0-9.]+\) - \(1[23][0-9]\.[0-9]+ [0-9.]+ [0-9.]+\)" -- "$atp" info "$work/w.atp"
+{
+  echo '<?xml version="1.0"?>'
+  echo '<VTKFile type="ImageData" version="0.1" byte_order="LittleEndian">'
+  echo '<ImageData WholeExtent="0 9 0 10 0 11" Origin="0 0 0" Spacing="0.5 0.5 0.5">'
+  echo '<Piece Extent="0 9 0 10 0 11"><PointData Scalars="density">'
+  echo '<DataArray type="Float32" Name="density" format="ascii">'
+  awk 'BEGIN { for (k = 0; k < 12; k++) for (j = 0; j < 11; j++) for (i = 0; i < 10; i++)
+    printf "%g\n", sqrt((i - 4.6)^2 + (j - 5.1)^2 + (k - 5.4)^2) }'
+  echo '</DataArray></PointData><CellData></CellData></Piece></ImageData></VTKFile>'
+} > "$work/ball.vti"
+expect 0 "volume: 10x11x12 voxels.* in 3 slabs" -- "$atp" build "$work/ball.vti" --iso 3.5 --slab 5 -o "$work/ball.atp" --quiet
+expect 0 "ball.atp: valid" -- "$atp" verify "$work/ball.atp"
+# Mistakes: usage errors (exit 2) before anything is read, bad volumes one line (exit 1).
+expect 2 "volume needs --iso" -- "$atp" build "$work/ball.vti" -o "$work/vx.atp"
+expect 2 "volume needs --iso" -- "$atp" build "$work/sphere.raw" --dims 24,24,24 -o "$work/vx.atp"
+expect 2 "--iso is for volumes.*bumpy-torus.ply is a mesh" -- "$atp" build "$data/bumpy-torus.ply" --iso 3 -o "$work/vx.atp"
+expect 2 "--slab is for volumes" -- "$atp" build "$data/bumpy-torus.ply" --slab 8 -o "$work/vx.atp"
+expect 2 "--spacing is for raw volumes, which need --dims" -- "$atp" build "$work/ball.vti" --iso 3 --spacing 1,1,1 -o "$work/vx.atp"
+expect 2 "--type must be uint8, int16, uint16 or float32, got 'int64'" -- "$atp" build "$work/sphere.raw" --dims 24,24,24 --type int64 --iso 100 -o "$work/vx.atp"
+expect 2 "--dims must be 3 comma-separated numbers" -- "$atp" build "$work/sphere.raw" --dims 24,24 --iso 100 -o "$work/vx.atp"
+expect 2 "--dims must be 3 whole numbers" -- "$atp" build "$work/sphere.raw" --dims 24,24,0 --iso 100 -o "$work/vx.atp"
+expect 2 "--iso must be a number" -- "$atp" build "$work/sphere.raw" --dims 24,24,24 --iso nan -o "$work/vx.atp"
+expect 2 "--slab must be a whole number from 2" -- "$atp" build "$work/sphere.raw" --dims 24,24,24 --iso 100 --slab 1 -o "$work/vx.atp"
+expect 1 "sphere.raw: is 13824 bytes, but 24x24x24 uint16 voxels are 27648 bytes" -- "$atp" build "$work/sphere.raw" --dims 24,24,24 --type uint16 --iso 100 -o "$work/vx.atp"
+expect 1 "sphere.raw: no surface at iso value 900 \(the voxel values range from 0 to 2[0-9]{2}\)" -- "$atp" build "$work/sphere.raw" --dims 24,24,24 --iso 900 -o "$work/vx.atp"
+perl -e 'for $n (0..63) { print pack("f<", $n == 37 ? 9**9**9 / 9**9**9 : $n) }' > "$work/nan.raw"
+expect 1 "nan.raw: voxel \(1, 1, 2\) is NaN" -- "$atp" build "$work/nan.raw" --dims 4,4,4 --type float32 --iso 10 -o "$work/vx.atp"
+expect 1 "missing.nii.gz: cannot open" -- "$atp" build "$work/missing.nii.gz" --iso 10 -o "$work/vx.atp"
+printf 'not a volume' > "$work/bad.vti"
+expect 1 "bad.vti: not a readable volume" -- "$atp" build "$work/bad.vti" --iso 10 -o "$work/vx.atp"
+lines=$("$atp" build "$work/bad.vti" --iso 10 -o "$work/vx.atp" --quiet 2>&1 | wc -l)
+[ "$lines" -eq 1 ] || { echo "FAIL: a bad volume gave $lines lines, not one"; failures=$((failures + 1)); }
+[ ! -e "$work/vx.atp" ] || { echo "FAIL: a failed volume build left a model"; failures=$((failures + 1)); }
+
 echo "$passed passed, $failures failed"
 [ "$failures" -eq 0 ]

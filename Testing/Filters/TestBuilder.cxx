@@ -3,6 +3,7 @@
 #include "atpConstruction.h"
 #include "atpPartitioner.h"
 #include "atpTriangleSource.h"
+#include "atpVolumeSlabs.h"
 #include "vtkATPBuilder.h"
 
 #include "vtkCallbackCommand.h"
@@ -165,6 +166,34 @@ TEST(Builder, ReportsErrorsWithoutThrowing)
   empty->SetFileName(model.c_str());
   EXPECT_EQ(empty->Build(), 0);
   EXPECT_NE(std::string(empty->GetErrorMessage()).find("empty"), std::string::npos);
+}
+
+TEST(Builder, IsoValueIsForVolumesOnly)
+{
+  vtkNew<vtkCallbackCommand> quiet;
+  const TemporaryPath model("never.atp");
+  vtkNew<vtkATPBuilder> builder;
+  builder->AddObserver(vtkCommand::ErrorEvent, quiet);
+  builder->SetFileName(model.c_str());
+  builder->SetInputFileName("/nonexistent/head.nii.gz");
+  EXPECT_EQ(builder->Build(), 0);
+  EXPECT_NE(std::string(builder->GetErrorMessage()).find("needs an iso value"), std::string::npos)
+    << builder->GetErrorMessage();
+  builder->SetIsoValue(3);
+  EXPECT_EQ(builder->Build(), 0);
+  EXPECT_NE(std::string(builder->GetErrorMessage()).find("head.nii.gz: cannot open"),
+    std::string::npos) << builder->GetErrorMessage();
+  builder->SetInputFileName("/nonexistent/mesh.ply");
+  EXPECT_EQ(builder->Build(), 0);
+  EXPECT_NE(std::string(builder->GetErrorMessage()).find("only for volumes"), std::string::npos)
+    << builder->GetErrorMessage();
+  atp::RawVolumeLayout raw; // a raw layout makes any file a volume
+  raw.Dimensions = { { 2, 2, 2 } };
+  builder->SetRawVolumeLayout(&raw);
+  EXPECT_EQ(builder->Build(), 0);
+  EXPECT_NE(std::string(builder->GetErrorMessage()).find("mesh.ply: cannot open"),
+    std::string::npos) << builder->GetErrorMessage();
+  EXPECT_FALSE(Exists(model));
 }
 
 TEST(Builder, PrintsItsProperties)
