@@ -1,5 +1,7 @@
 #include "atpBufferedReader.h"
 
+#include <algorithm>
+
 #include <cstring>
 
 namespace atp
@@ -15,7 +17,8 @@ bool IsSpace(unsigned char c)
 BufferedReader::BufferedReader(
   const InputFile& file, std::uint64_t offset, std::uint64_t line, std::size_t capacity)
   : Input(file)
-  , Buffer(capacity)
+  // A small file gets a small buffer: no MiBs zeroed to read a few bytes.
+  , Buffer(std::size_t(std::min<std::uint64_t>(capacity, file.Size() + 1)))
 {
   this->Seek(offset, line);
 }
