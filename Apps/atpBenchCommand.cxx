@@ -249,7 +249,7 @@ int BenchCommand(const std::vector<std::string>& arguments)
   }
   if (!errors.Message.empty())
   {
-    throw std::runtime_error(modelPath + ": " + errors.Message);
+    throw std::runtime_error(errors.Message); // a corrupt patch: it names the file and node
   }
   vtkSmartPointer<vtkImageData> atpImage = CaptureWindow(window);
   const double finalMiB = ResidentMiB(), peakMiB = PeakResidentMiB();
@@ -292,12 +292,6 @@ int BenchCommand(const std::vector<std::string>& arguments)
     {
       throw csv->Failure(std::strerror(errno));
     }
-    csv->Commit();
-  }
-  else
-  {
-    WriteCsv(std::cout, seconds, statistics);
-    std::cout.flush();
   }
   if (plot)
   {
@@ -306,6 +300,19 @@ int BenchCommand(const std::vector<std::string>& arguments)
   if (image)
   {
     WritePng(atpImage, *image);
+  }
+  // All or none: a failed output removes the others' partial files.
+  for (std::optional<PendingFile>* written : { &csv, &plot, &image })
+  {
+    if (*written)
+    {
+      (*written)->Commit();
+    }
+  }
+  if (csvToStdout)
+  {
+    WriteCsv(std::cout, seconds, statistics);
+    std::cout.flush();
   }
 
   std::vector<double> cut, overhead, patches, triangles;

@@ -39,7 +39,6 @@ void WritePng(vtkImageData* image, PendingFile& file)
   {
     throw file.Failure("the file read back is incomplete");
   }
-  file.Commit();
 }
 
 }

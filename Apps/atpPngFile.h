@@ -1,4 +1,4 @@
-// PNG output for the command line: written, read back whole, then put in place.
+// PNG output for the command line: written and read back whole, ready to be put in place.
 #ifndef atpPngFile_h
 #define atpPngFile_h
 
@@ -9,8 +9,9 @@ namespace atp
 
 class PendingFile;
 
-/// Writes `image` to `file`'s partial path with VTK's PNG writer, reads it back (VTK's writer
-/// does not report a full disk) and commits it; throws file.Failure(reason) otherwise.
+/// Writes `image` to `file`'s partial path with VTK's PNG writer and reads it back (VTK's
+/// writer does not always report a full disk); throws file.Failure(reason) when that fails.
+/// The caller commits the file.
 void WritePng(vtkImageData* image, PendingFile& file);
 
 }
