@@ -38,6 +38,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <iostream>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -148,18 +150,183 @@ std::optional<PendingFile> Output(const CommandLine& cl, const std::string& opti
   }
   return std::make_optional<PendingFile>(cl.Get(option), what);
 }
+
+struct Settings
+{
+  std::string ModelPath;
+  int Frames = 0, Width = 0, Height = 0;
+  double Tolerance = 1;
+  long long CacheMiB = 0;
+  bool Prefetching = true;
+  bool Quiet = false;
+};
+
+/// The flythrough of vtkATPMapper: what each frame took and did, and the final frame.
+struct AtpRun
+{
+  double Bounds[6];
+  std::vector<double> Seconds;
+  std::vector<RenderStatistics> Statistics;
+  RenderStatistics Last;     ///< the path's last frame
+  int ConvergingFrames = 0;  ///< frames rendered after the path until the cut was complete
+  vtkSmartPointer<vtkImageData> FinalFrame;
+  double StartMiB = 0, FinalMiB = 0, PeakMiB = 0;
+};
+
+/// The same path with vtkPolyDataMapper on the full-resolution mesh.
+struct FullRun
+{
+  std::vector<double> Seconds;
+  vtkIdType Triangles = 0;
+  double ImageDifference = 0; ///< against the converged final frame of vtkATPMapper
+};
+
+/// A frame-by-frame progress line on standard error, unless quiet.
+std::function<void(int)> Progress(ProgressReport& report, const Settings& settings)
+{
+  return [&report, &settings](int frame) {
+    if (!settings.Quiet)
+    {
+      report.Update(double(frame + 1) / settings.Frames);
+    }
+  };
+}
+
+AtpRun FlyAtp(const Settings& settings, const std::shared_ptr<const ModelFile>& file)
+{
+  vtkNew<vtkATPModel> model;
+  model->SetModelFile(file);
+  vtkNew<vtkATPMapper> mapper;
+  FirstVtkError errors;
+  errors.Watch(mapper);
+  mapper->SetInputData(model);
+  mapper->SetTolerancePixels(settings.Tolerance);
+  mapper->SetCacheBudget(vtkTypeInt64(settings.CacheMiB) << 20);
+  mapper->SetPrefetching(settings.Prefetching);
+  mapper->ScalarVisibilityOff(); // as the full-resolution mapper: the same pictures
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  vtkSmartPointer<vtkRenderWindow> window =
+    OffscreenWindow(settings.Width, settings.Height, actor);
+
+  AtpRun run;
+  mapper->GetBounds(run.Bounds);
+  run.StartMiB = ResidentMiB();
+  ProgressReport report("atp flythrough", std::uint64_t(settings.Frames), "frames");
+  const std::function<void(int)> progress = Progress(report, settings);
+  run.Seconds = FlyThrough(window, run.Bounds, settings.Frames, [&](int frame) {
+    run.Statistics.push_back(mapper->GetStatistics());
+    progress(frame);
+  });
+  report.Finish();
+  run.Last = mapper->GetStatistics();
+  for (; run.ConvergingFrames < 200 && !mapper->GetConverged(); ++run.ConvergingFrames)
+  {
+    window->Render();
+  }
+  if (!errors.Message.empty())
+  {
+    throw std::runtime_error(errors.Message); // a corrupt patch: it names the file and node
+  }
+  run.FinalFrame = CaptureWindow(window);
+  run.FinalMiB = ResidentMiB();
+  run.PeakMiB = std::max(PeakResidentMiB(), run.FinalMiB); // two counters, sampled apart
+  return run;
+}
+
+FullRun FlyFull(const Settings& settings, const std::string& path, vtkAlgorithm* reader,
+  const AtpRun& atp)
+{
+  vtkSmartPointer<vtkPolyData> mesh = ReadFullMesh(path, reader);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(mesh);
+  mapper->ScalarVisibilityOff();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  vtkSmartPointer<vtkRenderWindow> window =
+    OffscreenWindow(settings.Width, settings.Height, actor);
+  FullRun run;
+  run.Triangles = mesh->GetNumberOfPolys();
+  ProgressReport report("full-resolution flythrough", std::uint64_t(settings.Frames), "frames");
+  run.Seconds = FlyThrough(window, atp.Bounds, settings.Frames, Progress(report, settings));
+  report.Finish();
+  vtkNew<vtkImageDifference> difference;
+  difference->SetInputData(CaptureWindow(window));
+  difference->SetImageData(atp.FinalFrame);
+  difference->SetThreshold(32);
+  difference->Update();
+  run.ImageDifference = difference->GetThresholdedError();
+  return run;
+}
+
+void PrintAtpSummary(FILE* out, const Settings& settings, const AtpRun& run)
+{
+  std::vector<double> cut, cutShare, overhead, patches, triangles;
+  double totalTriangles = 0, totalSeconds = 0;
+  for (std::size_t f = 0; f < run.Seconds.size(); ++f)
+  {
+    const RenderStatistics& s = run.Statistics[f];
+    cut.push_back(s.CutSeconds);
+    cutShare.push_back(s.CutSeconds / run.Seconds[f]);
+    overhead.push_back((s.CutSeconds + s.UploadSeconds + s.DrawSeconds) / run.Seconds[f]);
+    patches.push_back(double(s.Patches));
+    triangles.push_back(double(s.Triangles));
+    totalTriangles += double(s.Triangles);
+    totalSeconds += run.Seconds[f];
+  }
+  const double modelMiB = double(std::filesystem::file_size(settings.ModelPath)) / 1048576.0;
+  std::fprintf(out,
+    "model: %s, %.1f MiB, %d frames at %dx%d, tolerance %g px, cache %lld MiB, prefetch %s\n",
+    settings.ModelPath.c_str(), modelMiB, settings.Frames, settings.Width, settings.Height,
+    settings.Tolerance, settings.CacheMiB, settings.Prefetching ? "on" : "off");
+  std::fprintf(out,
+    "atp: frame time median %.2f ms, p95 %.2f ms; %.2fM triangles/s; triangles/frame median "
+    "%.0f, max %.0f; patches/frame median %.0f, max %.0f\n",
+    1e3 * Percentile(run.Seconds, 0.5), 1e3 * Percentile(run.Seconds, 0.95),
+    totalTriangles / totalSeconds / 1e6, Percentile(triangles, 0.5), Percentile(triangles, 1.0),
+    Percentile(patches, 0.5), Percentile(patches, 1.0));
+  std::fprintf(out,
+    "atp: cut %.3f ms median (%.1f%% of the frame); CPU overhead (cut, uploads, draw calls) "
+    "%.1f%% median, %.1f%% p95 of the frame\n",
+    1e3 * Percentile(cut, 0.5), 100 * Percentile(cutShare, 0.5), 100 * Percentile(overhead, 0.5),
+    100 * Percentile(overhead, 0.95));
+  const RenderStatistics& last = run.Last;
+  std::fprintf(out,
+    "atp: decoded %llu patches in %.2f s of background time; cache %.1f MiB, %llu evictions; "
+    "prefetch %llu passes, %llu pages advised; final frame complete after %d more frames\n",
+    static_cast<unsigned long long>(last.DecodedPatches), last.DecodeSeconds,
+    double(last.CacheBytes) / 1048576.0, static_cast<unsigned long long>(last.Evictions),
+    static_cast<unsigned long long>(last.PrefetchPasses),
+    static_cast<unsigned long long>(last.PrefetchAdvisedPages), run.ConvergingFrames);
+  std::fprintf(out,
+    "atp: resident memory %.1f MiB at start, %.1f MiB at the end (%.2f%% of the model file), "
+    "peak %.1f MiB\n",
+    run.StartMiB, run.FinalMiB, 100 * run.FinalMiB / modelMiB, run.PeakMiB);
+}
+
+void PrintComparison(FILE* out, const std::string& path, const AtpRun& atp, const FullRun& full)
+{
+  const double fullMedian = Percentile(full.Seconds, 0.5);
+  std::fprintf(out, "full: %s, %lld triangles, frame time median %.2f ms, p95 %.2f ms\n",
+    path.c_str(), static_cast<long long>(full.Triangles), 1e3 * fullMedian,
+    1e3 * Percentile(full.Seconds, 0.95));
+  std::fprintf(out,
+    "speedup=%.2f image_difference=%.4f (vtkImageDifference, intensity threshold 32, final "
+    "frame)\n",
+    fullMedian / Percentile(atp.Seconds, 0.5), full.ImageDifference);
+}
 } // namespace
 
 int BenchCommand(const std::vector<std::string>& arguments)
 {
   CommandLine cl("bench",
     "Flies the standard path around a model offscreen (a full orbit, zooming from the whole\n"
-    "model to a close-up and back, as the paper's figure 7) with vtkATPMapper, timing every\n"
-    "frame to completion, and prints per-frame statistics as CSV and a summary. Needs a\n"
-    "display (xvfb-run -a without one). With --compare-full, the same path is drawn by\n"
-    "vtkPolyDataMapper on the full-resolution mesh, and the summary ends with a line holding\n"
-    "speedup=<full median frame time / atp median frame time> and the image difference of\n"
-    "the two at the final frame. Output files appear only when complete.");
+    "model to a close-up and back, like the paper's inspection session) with vtkATPMapper,\n"
+    "timing every frame to completion, and prints per-frame statistics as CSV and a summary.\n"
+    "Needs a display (xvfb-run -a without one). With --compare-full, the same path is drawn\n"
+    "by vtkPolyDataMapper on the full-resolution mesh, and the summary ends with a line\n"
+    "holding speedup=<full median frame time / atp median frame time> and the image\n"
+    "difference of the two at the final frame. Output files appear only when all are complete.");
   cl.AddPositional("MODEL", "a .atp model");
   cl.AddOption("frames", "", "N", "frames of the path", "450");
   cl.AddOption("size", "", "WxH", "window size in pixels", "800x600");
@@ -168,7 +335,8 @@ int BenchCommand(const std::vector<std::string>& arguments)
   cl.AddFlag("no-prefetch", "no speculative prefetching");
   cl.AddOption("csv", "", "FILE",
     "per-frame statistics; '-': standard output, the summary then goes to standard error", "-");
-  cl.AddOption("plot", "", "FILE.png", "frame time, triangles, patches and cache misses per frame");
+  cl.AddOption("plot", "", "FILE.png",
+    "the paper's figure 7: frame time, triangles, patches, cache misses and uploads per frame");
   cl.AddOption("plot-size", "", "WxH", "plot size in pixels", "800x1000");
   cl.AddOption("image", "", "FILE.png", "the final frame, once every patch it needs is drawn");
   cl.AddOption("compare-full", "", "INPUT",
@@ -178,12 +346,16 @@ int BenchCommand(const std::vector<std::string>& arguments)
   {
     return 0;
   }
-  const int frames = int(cl.GetInteger("frames", 2, 1000000));
-  int width = 0, height = 0, plotWidth = 0, plotHeight = 0;
-  cl.GetSize("size", width, height);
+  Settings settings;
+  settings.ModelPath = cl.Positional(0);
+  settings.Frames = int(cl.GetInteger("frames", 2, 1000000));
+  cl.GetSize("size", settings.Width, settings.Height);
+  settings.Tolerance = cl.GetNumber("tolerance", 1e-3, 1e6);
+  settings.CacheMiB = cl.GetInteger("cache", 1, 1 << 24);
+  settings.Prefetching = !cl.Has("no-prefetch");
+  settings.Quiet = cl.Has("quiet");
+  int plotWidth = 0, plotHeight = 0;
   cl.GetSize("plot-size", plotWidth, plotHeight);
-  const double tolerance = cl.GetNumber("tolerance", 1e-3, 1e6);
-  const long long cacheMiB = cl.GetInteger("cache", 1, 1 << 24);
   for (const char* option : { "plot", "image" })
   {
     if (cl.Has(option) && !EndsWith(cl.Get(option), ".png"))
@@ -196,10 +368,12 @@ int BenchCommand(const std::vector<std::string>& arguments)
   vtkSmartPointer<vtkAlgorithm> fullReader;
   if (cl.Has("compare-full") && !(fullReader = MeshReaderFor(fullPath)))
   {
-    throw UsageError("--compare-full must name a .ply, .obj, .stl or .vtp file, got '" + fullPath + "'");
+    throw UsageError(
+      "--compare-full must name a .ply, .obj, .stl or .vtp file, got '" + fullPath + "'");
   }
-  const std::string modelPath = cl.Positional(0);
-  auto file = std::make_shared<const ModelFile>(ModelFile::Open(modelPath));
+
+  // Everything a user can get wrong is found before the flythrough.
+  auto file = std::make_shared<const ModelFile>(ModelFile::Open(settings.ModelPath));
   const bool csvToStdout = cl.Get("csv") == "-";
   std::optional<PendingFile> csv = csvToStdout ? std::nullopt : Output(cl, "csv", "CSV");
   std::optional<PendingFile> plot = Output(cl, "plot", "plot");
@@ -207,88 +381,21 @@ int BenchCommand(const std::vector<std::string>& arguments)
   if (fullReader)
   {
     // VTK's mesh readers crash on some malformed files (a truncated PLY): the builder's own
-    // reader checks the input first, before the flythrough, naming the file and the problem.
+    // reader checks the input first, naming the file and the problem.
     OpenTriangleSource(fullPath, "");
   }
-  FILE* summary = csvToStdout ? stderr : stdout;
 
-  vtkNew<vtkATPModel> model;
-  model->SetModelFile(file);
-  vtkNew<vtkATPMapper> mapper;
-  FirstVtkError errors;
-  errors.Watch(mapper);
-  mapper->SetInputData(model);
-  mapper->SetTolerancePixels(tolerance);
-  mapper->SetCacheBudget(vtkTypeInt64(cacheMiB) << 20);
-  mapper->SetPrefetching(!cl.Has("no-prefetch"));
-  mapper->ScalarVisibilityOff(); // as the full-resolution mapper: the same pictures
-  vtkNew<vtkActor> actor;
-  actor->SetMapper(mapper);
-  vtkSmartPointer<vtkRenderWindow> window = OffscreenWindow(width, height, actor);
-  double bounds[6];
-  mapper->GetBounds(bounds);
-  const double modelMiB = double(std::filesystem::file_size(modelPath)) / 1048576.0;
-  const double startMiB = ResidentMiB();
-
-  std::vector<RenderStatistics> statistics;
-  ProgressReport progress("atp flythrough", std::uint64_t(frames), "frames");
-  const bool quiet = cl.Has("quiet");
-  const std::vector<double> seconds = FlyThrough(window, bounds, frames, [&](int f) {
-    statistics.push_back(mapper->GetStatistics());
-    if (!quiet)
-    {
-      progress.Update(double(f + 1) / frames);
-    }
-  });
-  progress.Finish();
-  const RenderStatistics last = mapper->GetStatistics();
-  // The final frame, converged, for the picture and the comparison.
-  int extraFrames = 0;
-  for (; extraFrames < 200 && !mapper->GetConverged(); ++extraFrames)
-  {
-    window->Render();
-  }
-  if (!errors.Message.empty())
-  {
-    throw std::runtime_error(errors.Message); // a corrupt patch: it names the file and node
-  }
-  vtkSmartPointer<vtkImageData> atpImage = CaptureWindow(window);
-  const double finalMiB = ResidentMiB();
-  const double peakMiB = std::max(PeakResidentMiB(), finalMiB); // two counters, sampled apart
-
-  std::vector<double> fullSeconds;
-  vtkIdType fullTriangles = 0;
-  double imageDifference = 0;
+  const AtpRun atp = FlyAtp(settings, file);
+  std::optional<FullRun> full;
   if (fullReader)
   {
-    vtkSmartPointer<vtkPolyData> mesh = ReadFullMesh(fullPath, fullReader);
-    fullTriangles = mesh->GetNumberOfPolys();
-    vtkNew<vtkPolyDataMapper> fullMapper;
-    fullMapper->SetInputData(mesh);
-    fullMapper->ScalarVisibilityOff();
-    vtkNew<vtkActor> fullActor;
-    fullActor->SetMapper(fullMapper);
-    vtkSmartPointer<vtkRenderWindow> fullWindow = OffscreenWindow(width, height, fullActor);
-    ProgressReport fullProgress("full-resolution flythrough", std::uint64_t(frames), "frames");
-    fullSeconds = FlyThrough(fullWindow, bounds, frames, [&](int f) {
-      if (!quiet)
-      {
-        fullProgress.Update(double(f + 1) / frames);
-      }
-    });
-    fullProgress.Finish();
-    vtkNew<vtkImageDifference> difference;
-    difference->SetInputData(CaptureWindow(fullWindow));
-    difference->SetImageData(atpImage);
-    difference->SetThreshold(32);
-    difference->Update();
-    imageDifference = difference->GetThresholdedError();
+    full = FlyFull(settings, fullPath, fullReader, atp);
   }
 
   if (csv)
   {
     std::ofstream out(csv->PartialPath());
-    WriteCsv(out, seconds, statistics);
+    WriteCsv(out, atp.Seconds, atp.Statistics);
     out.close();
     if (!out)
     {
@@ -297,11 +404,13 @@ int BenchCommand(const std::vector<std::string>& arguments)
   }
   if (plot)
   {
-    WritePng(PlotFlythrough(seconds, statistics, fullSeconds, plotWidth, plotHeight), *plot);
+    WritePng(PlotFlythrough(atp.Seconds, atp.Statistics, full ? full->Seconds : std::vector<double>(),
+               plotWidth, plotHeight),
+      *plot);
   }
   if (image)
   {
-    WritePng(atpImage, *image);
+    WritePng(atp.FinalFrame, *image);
   }
   // All or none: a failed output removes the others' partial files.
   for (std::optional<PendingFile>* written : { &csv, &plot, &image })
@@ -313,48 +422,12 @@ int BenchCommand(const std::vector<std::string>& arguments)
   }
   if (csvToStdout)
   {
-    WriteCsv(std::cout, seconds, statistics);
+    WriteCsv(std::cout, atp.Seconds, atp.Statistics);
     std::cout.flush();
   }
 
-  std::vector<double> cut, overhead, patches, triangles;
-  double totalTriangles = 0, totalSeconds = 0;
-  for (std::size_t f = 0; f < seconds.size(); ++f)
-  {
-    const RenderStatistics& s = statistics[f];
-    cut.push_back(s.CutSeconds);
-    overhead.push_back((s.CutSeconds + s.UploadSeconds + s.DrawSeconds) / seconds[f]);
-    patches.push_back(double(s.Patches));
-    triangles.push_back(double(s.Triangles));
-    totalTriangles += double(s.Triangles);
-    totalSeconds += seconds[f];
-  }
-  const double median = Percentile(seconds, 0.5);
-  std::fprintf(summary, "model: %s, %.1f MiB, %d frames at %dx%d, tolerance %g px, cache %lld MiB, prefetch %s\n",
-    modelPath.c_str(), modelMiB, frames, width, height, tolerance, cacheMiB,
-    mapper->GetPrefetching() ? "on" : "off");
-  std::fprintf(summary,
-    "atp: frame time median %.2f ms, p95 %.2f ms; %.2fM triangles/s; triangles/frame median "
-    "%.0f, max %.0f; patches/frame median %.0f, max %.0f\n",
-    1e3 * median, 1e3 * Percentile(seconds, 0.95), totalTriangles / totalSeconds / 1e6,
-    Percentile(triangles, 0.5), Percentile(triangles, 1.0), Percentile(patches, 0.5),
-    Percentile(patches, 1.0));
-  std::fprintf(summary,
-    "atp: cut %.3f ms median (%.1f%% of the median frame); CPU overhead (cut, uploads, draw "
-    "calls) %.1f%% median, %.1f%% p95 of the frame\n",
-    1e3 * Percentile(cut, 0.5), 100 * Percentile(cut, 0.5) / median,
-    100 * Percentile(overhead, 0.5), 100 * Percentile(overhead, 0.95));
-  std::fprintf(summary,
-    "atp: decoded %llu patches in %.2f s of background time; cache %.1f MiB, %llu evictions; "
-    "prefetch %llu passes, %llu pages advised; final frame converged after %d more frames\n",
-    static_cast<unsigned long long>(last.DecodedPatches), last.DecodeSeconds,
-    double(last.CacheBytes) / 1048576.0, static_cast<unsigned long long>(last.Evictions),
-    static_cast<unsigned long long>(last.PrefetchPasses),
-    static_cast<unsigned long long>(last.PrefetchAdvisedPages), extraFrames);
-  std::fprintf(summary,
-    "atp: resident memory %.1f MiB at start, %.1f MiB at the end (%.2f%% of the model file), "
-    "peak %.1f MiB\n",
-    startMiB, finalMiB, 100 * finalMiB / modelMiB, peakMiB);
+  FILE* summary = csvToStdout ? stderr : stdout;
+  PrintAtpSummary(summary, settings, atp);
   for (const std::optional<PendingFile>* written : { &csv, &plot, &image })
   {
     if (*written)
@@ -362,16 +435,9 @@ int BenchCommand(const std::vector<std::string>& arguments)
       std::fprintf(summary, "wrote %s\n", (*written)->Path().c_str());
     }
   }
-  if (fullReader)
+  if (full)
   {
-    const double fullMedian = Percentile(fullSeconds, 0.5);
-    std::fprintf(summary, "full: %s, %lld triangles, frame time median %.2f ms, p95 %.2f ms\n",
-      fullPath.c_str(), static_cast<long long>(fullTriangles), 1e3 * fullMedian,
-      1e3 * Percentile(fullSeconds, 0.95));
-    std::fprintf(summary,
-      "speedup=%.2f image_difference=%.4f (vtkImageDifference, intensity threshold 32, final "
-      "frame)\n",
-      fullMedian / median, imageDifference);
+    PrintComparison(summary, fullPath, atp, *full);
   }
   return 0;
 }
