@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace atp
@@ -13,6 +14,12 @@ PendingFile::PendingFile(std::string path, std::string what)
   : FinalPath(std::move(path))
   , What(std::move(what))
 {
+  struct stat existing{};
+  if (FinalPath.empty() || FinalPath.back() == '/' ||
+    (::stat(FinalPath.c_str(), &existing) == 0 && S_ISDIR(existing.st_mode)))
+  {
+    throw Failure("not a file name"); // found now, not when renaming after the work
+  }
   const std::size_t slash = FinalPath.rfind('/');
   const std::size_t dot = FinalPath.rfind('.');
   const std::string extension =

@@ -68,8 +68,10 @@ expect 2 "option --plot needs a value" -- "$atp" bench "$work/t.atp" --plot
 expect 2 "--plot must name a .png file" -- "$atp" bench "$work/t.atp" --plot "$work/p.jpg"
 expect 2 "--image must name a .png file" -- "$atp" bench "$work/t.atp" --image "$work/i"
 expect 2 "--compare-full must name a .ply, .obj, .stl or .vtp" -- "$atp" bench "$work/t.atp" --compare-full "$work/m.dae"
+mkdir "$work/no"
 expect 1 "p.png: cannot write the plot: No such file" -- "$atp" bench "$work/t.atp" "${small[@]}" --plot "$work/no/dir/p.png"
 expect 1 "f.csv: cannot write the CSV: No such file" -- "$atp" bench "$work/t.atp" "${small[@]}" --csv "$work/no/dir/f.csv"
+expect 1 "no: cannot write the CSV: not a file name" -- "$atp" bench "$work/t.atp" "${small[@]}" --csv "$work/no"
 expect 1 "missing.ply: cannot open" -- "$atp" bench "$work/t.atp" "${small[@]}" --compare-full "$work/missing.ply" --csv "$work/x.csv"
 printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n' > "$work/truncated.ply"
 expect 1 "truncated.ply: truncated" -- "$atp" bench "$work/t.atp" "${small[@]}" --compare-full "$work/truncated.ply" --csv "$work/x.csv"
@@ -81,6 +83,7 @@ expect 1 "^atp bench: error: .*bad.atp: node [0-9]+: patch checksum mismatch" --
 [ "$(grep -c . <<<"$out")" -eq 1 ] || fail "more than one line for a corrupt model: $out"
 # A full disk (a file size limit stands in for it) while writing the plot.
 expect 1 "full.png: cannot write the plot" -- bash -c "ulimit -f 8; exec '$atp' bench '$work/t.atp' ${small[*]} --csv '$work/x.csv' --plot '$work/full.png'"
+rmdir "$work/no"
 leftovers=$(ls "$work" | grep -E 'partial|^x\.|full|no')
 [ -z "$leftovers" ] || fail "files left behind: $leftovers"
 
