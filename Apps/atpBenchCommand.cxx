@@ -49,12 +49,6 @@ namespace atp
 
 namespace
 {
-bool EndsWith(const std::string& text, const std::string& suffix)
-{
-  return text.size() >= suffix.size() &&
-    text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 /// An offscreen window drawing `actor` with a glossy material (the paper's inspection
 /// setting), the same for both mappers so their pictures compare.
 vtkSmartPointer<vtkRenderWindow> OffscreenWindow(int width, int height, vtkActor* actor)
@@ -73,25 +67,26 @@ vtkSmartPointer<vtkRenderWindow> OffscreenWindow(int width, int height, vtkActor
 /// VTK's reader for the mesh format `path` names by its extension; null when there is none.
 vtkSmartPointer<vtkAlgorithm> MeshReaderFor(const std::string& path)
 {
-  if (EndsWith(path, ".ply"))
+  const std::string extension = FileExtension(path);
+  if (extension == ".ply")
   {
     auto reader = vtkSmartPointer<vtkPLYReader>::New();
     reader->SetFileName(path.c_str());
     return reader;
   }
-  if (EndsWith(path, ".obj"))
+  if (extension == ".obj")
   {
     auto reader = vtkSmartPointer<vtkOBJReader>::New();
     reader->SetFileName(path.c_str());
     return reader;
   }
-  if (EndsWith(path, ".stl"))
+  if (extension == ".stl")
   {
     auto reader = vtkSmartPointer<vtkSTLReader>::New();
     reader->SetFileName(path.c_str());
     return reader;
   }
-  if (EndsWith(path, ".vtp"))
+  if (extension == ".vtp")
   {
     auto reader = vtkSmartPointer<vtkXMLPolyDataReader>::New();
     reader->SetFileName(path.c_str());
@@ -358,7 +353,7 @@ int BenchCommand(const std::vector<std::string>& arguments)
   cl.GetSize("plot-size", plotWidth, plotHeight);
   for (const char* option : { "plot", "image" })
   {
-    if (cl.Has(option) && !EndsWith(cl.Get(option), ".png"))
+    if (cl.Has(option) && FileExtension(cl.Get(option)) != ".png")
     {
       throw UsageError(std::string("--") + option + " must name a .png file, got '" +
         cl.Get(option) + "'");

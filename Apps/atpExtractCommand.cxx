@@ -30,16 +30,12 @@ namespace atp
 
 namespace
 {
-bool EndsWith(const std::string& text, const std::string& suffix)
-{
-  return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 /// A writer for the format `path` names by its extension (.ply, .vtp or .stl), writing to
 /// `file`.
 vtkSmartPointer<vtkAlgorithm> WriterFor(const std::string& path, const std::string& file)
 {
-  if (EndsWith(path, ".ply"))
+  const std::string extension = FileExtension(path);
+  if (extension == ".ply")
   {
     auto ply = vtkSmartPointer<vtkPLYWriter>::New();
     ply->SetFileTypeToBinary();
@@ -47,7 +43,7 @@ vtkSmartPointer<vtkAlgorithm> WriterFor(const std::string& path, const std::stri
     ply->SetFileName(file.c_str());
     return ply;
   }
-  if (EndsWith(path, ".vtp"))
+  if (extension == ".vtp")
   {
     auto vtp = vtkSmartPointer<vtkXMLPolyDataWriter>::New();
     vtp->SetFileName(file.c_str());
@@ -102,7 +98,8 @@ int ExtractCommand(const std::vector<std::string>& arguments)
     throw UsageError("missing -o OUT");
   }
   const std::string out = cl.Get("output");
-  if (!EndsWith(out, ".ply") && !EndsWith(out, ".vtp") && !EndsWith(out, ".stl"))
+  const std::string extension = FileExtension(out);
+  if (extension != ".ply" && extension != ".vtp" && extension != ".stl")
   {
     throw UsageError("-o must name a .ply, .vtp or .stl file, got '" + out + "'");
   }

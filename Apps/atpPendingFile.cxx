@@ -1,5 +1,7 @@
 #include "atpPendingFile.h"
 
+#include "atpCommandLine.h"
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -20,11 +22,7 @@ PendingFile::PendingFile(std::string path, std::string what)
   {
     throw Failure("not a file name"); // found now, not when renaming after the work
   }
-  const std::size_t slash = FinalPath.rfind('/');
-  const std::size_t dot = FinalPath.rfind('.');
-  const std::string extension =
-    dot != std::string::npos && (slash == std::string::npos || dot > slash) ? FinalPath.substr(dot) : "";
-  Partial = FinalPath + ".partial-" + std::to_string(::getpid()) + extension;
+  Partial = FinalPath + ".partial-" + std::to_string(::getpid()) + FileExtension(FinalPath);
   const int fd = ::open(Partial.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd < 0)
   {
