@@ -146,6 +146,10 @@ std::optional<PendingFile> Output(const CommandLine& cl, const std::string& opti
   return std::make_optional<PendingFile>(cl.Get(option), what);
 }
 
+/// The still camera of the last frame is rendered again until its cut is complete, for the
+/// picture and the comparison, at most this many times.
+constexpr int MaxConvergingFrames = 200;
+
 struct Settings
 {
   std::string ModelPath;
@@ -164,6 +168,7 @@ struct AtpRun
   std::vector<RenderStatistics> Statistics;
   RenderStatistics Last;     ///< the path's last frame
   int ConvergingFrames = 0;  ///< frames rendered after the path until the cut was complete
+  bool Converged = false;    ///< whether it was, within MaxConvergingFrames
   vtkSmartPointer<vtkImageData> FinalFrame;
   double StartMiB = 0, FinalMiB = 0, PeakMiB = 0;
 };
@@ -215,10 +220,12 @@ AtpRun FlyAtp(const Settings& settings, const std::shared_ptr<const ModelFile>& 
   });
   report.Finish();
   run.Last = mapper->GetStatistics();
-  for (; run.ConvergingFrames < 200 && !mapper->GetConverged(); ++run.ConvergingFrames)
+  for (; run.ConvergingFrames < MaxConvergingFrames && !mapper->GetConverged();
+       ++run.ConvergingFrames)
   {
     window->Render();
   }
+  run.Converged = mapper->GetConverged();
   if (!errors.Message.empty())
   {
     throw std::runtime_error(errors.Message); // a corrupt patch: it names the file and node
@@ -288,11 +295,12 @@ void PrintAtpSummary(FILE* out, const Settings& settings, const AtpRun& run)
   const RenderStatistics& last = run.Last;
   std::fprintf(out,
     "atp: decoded %llu patches in %.2f s of background time; cache %.1f MiB, %llu evictions; "
-    "prefetch %llu passes, %llu pages advised; final frame complete after %d more frames\n",
+    "prefetch %llu passes, %llu pages advised; final frame %s after %d more frames\n",
     static_cast<unsigned long long>(last.DecodedPatches), last.DecodeSeconds,
     double(last.CacheBytes) / 1048576.0, static_cast<unsigned long long>(last.Evictions),
     static_cast<unsigned long long>(last.PrefetchPasses),
-    static_cast<unsigned long long>(last.PrefetchAdvisedPages), run.ConvergingFrames);
+    static_cast<unsigned long long>(last.PrefetchAdvisedPages),
+    run.Converged ? "complete" : "still incomplete", run.ConvergingFrames);
   std::fprintf(out,
     "atp: resident memory %.1f MiB at start, %.1f MiB at the end (%.2f%% of the model file), "
     "peak %.1f MiB\n",
