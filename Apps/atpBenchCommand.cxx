@@ -4,6 +4,7 @@
 #include "atpCommandLine.h"
 #include "atpFlythrough.h"
 #include "atpModelFile.h"
+#include "atpOffscreenWindow.h"
 #include "atpPendingFile.h"
 #include "atpPngFile.h"
 #include "atpProcessMemory.h"
@@ -53,9 +54,7 @@ namespace
 /// setting), the same for both mappers so their pictures compare.
 vtkSmartPointer<vtkRenderWindow> OffscreenWindow(int width, int height, vtkActor* actor)
 {
-  auto window = vtkSmartPointer<vtkRenderWindow>::New();
-  window->SetOffScreenRendering(1);
-  window->SetSize(width, height);
+  vtkSmartPointer<vtkRenderWindow> window = NewOffscreenWindow(width, height);
   vtkNew<vtkRenderer> renderer;
   renderer->AddActor(actor);
   window->AddRenderer(renderer);

@@ -1,5 +1,6 @@
 #include "atpBenchPlot.h"
 
+#include "atpOffscreenWindow.h"
 #include "atpWindowImage.h"
 
 #include "vtkAxis.h"
@@ -82,8 +83,7 @@ vtkSmartPointer<vtkImageData> PlotFlythrough(const std::vector<double>& seconds,
   AddColumn(table, "uploads", frames, [&](std::size_t f) { return double(statistics[f].Uploads); });
 
   vtkNew<vtkContextView> view;
-  view->GetRenderWindow()->SetOffScreenRendering(1);
-  view->GetRenderWindow()->SetSize(width, height);
+  view->SetRenderWindow(NewOffscreenWindow(width, height));
   view->GetRenderer()->SetBackground(1, 1, 1);
   vtkNew<vtkChartMatrix> matrix;
   view->GetScene()->AddItem(matrix);

@@ -13,6 +13,7 @@ packages=(
   libxxhash-dev          # patch and section checksums (XXH3)
   libopenmpi-dev openmpi-bin   # VTK 9.1 on Debian links MPI; distributed build
   xvfb xauth             # headless rendering for tests
+  libx11-dev             # XOpenDisplay: no X display is a clear error, not VTK's abort
   mricron-data           # real MRI volumes for the brain isosurface benchmark
 )
 

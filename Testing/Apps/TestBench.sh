@@ -75,6 +75,9 @@ expect 1 "no: cannot write the CSV: not a file name" -- "$atp" bench "$work/t.at
 expect 1 "missing.ply: cannot open" -- "$atp" bench "$work/t.atp" "${small[@]}" --compare-full "$work/missing.ply" --csv "$work/x.csv"
 printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n' > "$work/truncated.ply"
 expect 1 "truncated.ply: truncated" -- "$atp" bench "$work/t.atp" "${small[@]}" --compare-full "$work/truncated.ply" --csv "$work/x.csv"
+# No X server to draw with (VTK's X11 window would abort the process).
+expect 1 "needs an X display here; without one, run under xvfb-run -a" -- env -u DISPLAY "$atp" bench "$work/t.atp" "${small[@]}" --csv "$work/x.csv"
+expect 1 "cannot open the X display ':4321'" -- env DISPLAY=:4321 "$atp" bench "$work/t.atp" "${small[@]}" --csv "$work/x.csv"
 # A model with corrupt coarse patches: the renderer's error, once, as the command's.
 size=$(stat -c %s "$work/t.atp")
 cp "$work/t.atp" "$work/bad.atp"
