@@ -7,6 +7,7 @@
 #include "vtkChartLegend.h"
 #include "vtkChartMatrix.h"
 #include "vtkChartXY.h"
+#include "vtkDataArray.h"
 #include "vtkContextScene.h"
 #include "vtkContextView.h"
 #include "vtkDoubleArray.h"
@@ -19,6 +20,7 @@
 #include "vtkTextProperty.h"
 #include "vtkVector.h"
 
+#include <algorithm>
 #include <functional>
 #include <string>
 
@@ -55,13 +57,23 @@ void Chart(vtkChartXY* chart, vtkTable* table, const char* title, std::vector<Li
   chart->SetShowLegend(lines.size() > 1);
   chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
   chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
+  double highest = 1; // an all-zero line still gets an axis
   for (const Line& line : lines)
   {
     vtkPlot* plot = chart->AddPlot(vtkChart::LINE);
     plot->SetInputData(table, "frame", line.Column);
     plot->SetColor(line.Color[0], line.Color[1], line.Color[2], 255);
     plot->SetWidth(1.5);
+    highest = std::max(
+      highest, vtkDataArray::SafeDownCast(table->GetColumnByName(line.Column))->GetRange()[1]);
   }
+  // Quantities read from zero, as in the paper's plots, and the frames span the width.
+  vtkAxis* left = chart->GetAxis(vtkAxis::LEFT);
+  left->SetBehavior(vtkAxis::FIXED);
+  left->SetRange(0, 1.05 * highest);
+  vtkAxis* bottom = chart->GetAxis(vtkAxis::BOTTOM);
+  bottom->SetBehavior(vtkAxis::FIXED);
+  bottom->SetRange(0, std::max(1.0, double(table->GetNumberOfRows() - 1)));
 }
 } // namespace
 
