@@ -71,6 +71,11 @@ void Chart(vtkChartXY* chart, vtkTable* table, const char* title, std::vector<Li
   vtkAxis* left = chart->GetAxis(vtkAxis::LEFT);
   left->SetBehavior(vtkAxis::FIXED);
   left->SetRange(0, 1.05 * highest);
+  if (highest >= 1e5)
+  {
+    left->SetNotation(vtkAxis::FIXED_NOTATION); // millions of triangles without exponents
+    left->SetPrecision(0);
+  }
   vtkAxis* bottom = chart->GetAxis(vtkAxis::BOTTOM);
   bottom->SetBehavior(vtkAxis::FIXED);
   bottom->SetRange(0, std::max(1.0, double(table->GetNumberOfRows() - 1)));
