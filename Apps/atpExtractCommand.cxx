@@ -9,7 +9,6 @@
 #include "vtkATPModel.h"
 
 #include "vtkCamera.h"
-#include "vtkCommand.h"
 #include "vtkErrorCode.h"
 #include "vtkNew.h"
 #include "vtkPLYWriter.h"
