@@ -41,6 +41,10 @@ grep -qE "^full: .*bumpy-torus.ply, 186920 triangles" <<<"$out" || fail "no full
 check_csv "$work/f.csv" 4
 "$checkpng" "$work/i.png" 96 64 || fail "the final frame"
 "$checkpng" "$work/p.png" 320 400 || fail "the plot"
+# The full mesh in another format, read by VTK's reader for it.
+expect 0 "wrote .*full.vtp: 186920 triangles" -- "$atp" extract "$work/t.atp" --level 60 -o "$work/full.vtp"
+expect 0 "^speedup=[0-9.]+ image_difference=[0-9.]+ " -- "$atp" bench "$work/t.atp" --frames 2 --size 64x48 --quiet --compare-full "$work/full.vtp"
+rm "$work/full.vtp"
 # The check can fail: a black 96x64 PNG is blank, and of another size than asked.
 base64 -d > "$work/blank.png" <<<"iVBORw0KGgoAAAANSUhEUgAAAGAAAABACAIAAABqVuVZAAAAKUlEQVR42u3BAQ0AAADCoPdPbQ43oAAAAAAAAAAAAAAAAAAAAAAAgDcDSEAAARhzOZwAAAAASUVORK5CYII="
 expect 1 "blank.png: 96x64, 0.0% of the pixels differ" -- "$checkpng" "$work/blank.png" 96 64
