@@ -1,10 +1,12 @@
 // atp: the command line of Adaptive TetraPuzzles for VTK.
+#include "atpBenchCommand.h"
 #include "atpCalibrate.h"
 #include "atpExtractCommand.h"
 #include "atpCommandLine.h"
 #include "atpConstruction.h"
 #include "atpModelCommands.h"
 #include "atpPartitioner.h"
+#include "atpProcessMemory.h"
 #include "atpProgressReport.h"
 #include "atpSurfaceGenerator.h"
 #include "atpSlabContour.h"
@@ -21,20 +23,13 @@
 #include <csignal>
 #include <cstdio>
 #include <iostream>
-#include <sys/resource.h>
 
 namespace
 {
 using atp::CommandLine;
 using atp::FormatCount;
 using atp::FormatDuration;
-
-double PeakResidentMiB()
-{
-  rusage usage{};
-  ::getrusage(RUSAGE_SELF, &usage);
-  return double(usage.ru_maxrss) / 1024.0; // Linux reports KiB
-}
+using atp::PeakResidentMiB;
 
 std::vector<std::string> Rest(int argc, char** argv)
 {
@@ -280,6 +275,7 @@ void PrintHelp()
                "  verify     check every checksum, invariant and patch of a model\n"
                "  calibrate  find and store a model's error scale from rendered views\n"
                "  extract    write a level of detail (a camera's cut or a level) as PLY, VTP or STL\n"
+               "  bench      time the standard flythrough of a model: CSV, summary, plot, speed-up\n"
                "  generate   write a large test surface as binary PLY\n\n"
                "Run 'atp COMMAND --help' for the options of a command.\n";
 }
@@ -320,6 +316,10 @@ int main(int argc, char** argv)
     if (command == "extract")
     {
       return atp::ExtractCommand(Rest(argc, argv));
+    }
+    if (command == "bench")
+    {
+      return atp::BenchCommand(Rest(argc, argv));
     }
     std::fprintf(stderr, "atp: unknown command '%s' (see atp --help)\n", command.c_str());
     return 2;

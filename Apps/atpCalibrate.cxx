@@ -4,6 +4,7 @@
 #include "atpCut.h"
 #include "atpModelEdit.h"
 #include "atpModelFile.h"
+#include "atpOffscreenWindow.h"
 #include "atpPatchMesh.h"
 #include "atpPatchPolyData.h"
 #include "atpProgressReport.h"
@@ -98,13 +99,7 @@ class Snapshot
 public:
   Snapshot(int width, int height)
   {
-    // VTK's X11 window aborts the process when it finds no display: say what to do instead.
-    const char* display = std::getenv("DISPLAY");
-    if (Window->IsA("vtkXOpenGLRenderWindow") && (!display || !*display))
-    {
-      throw std::runtime_error("rendering offscreen needs an X display here; without one, run "
-                               "under xvfb-run -a");
-    }
+    ConnectDisplay(Window);
     Window->SetOffScreenRendering(1);
     Window->SetMultiSamples(0); // one sample per pixel, as the tolerance is stated
     Window->SetSize(width, height);

@@ -1,6 +1,7 @@
 #include "atpCommandLine.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -10,6 +11,20 @@
 
 namespace atp
 {
+
+std::string FileExtension(const std::string& path)
+{
+  const std::size_t dot = path.rfind('.');
+  const std::size_t slash = path.rfind('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
+  {
+    return {};
+  }
+  std::string extension = path.substr(dot);
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
 
 CommandLine::CommandLine(std::string command, std::string summary)
   : Command(std::move(command))

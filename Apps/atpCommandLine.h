@@ -21,6 +21,10 @@ public:
 /// A number as %g prints it (for messages).
 std::string FormatNumber(double value);
 
+/// The extension of a file name, lowercased, with its dot (".ply"); empty when it has none.
+/// Options naming files are told apart by it, as the builder's readers do.
+std::string FileExtension(const std::string& path);
+
 class CommandLine
 {
 public:

@@ -2,15 +2,14 @@
 
 #include "atpCommandLine.h"
 #include "atpModelFile.h"
+#include "atpPendingFile.h"
 #include "atpTriangleSource.h"
+#include "atpVtkErrors.h"
 #include "vtkATPExtractCut.h"
 #include "vtkATPModel.h"
 
-#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
-#include "vtkCommand.h"
 #include "vtkErrorCode.h"
-#include "vtkExecutive.h"
 #include "vtkNew.h"
 #include "vtkPLYWriter.h"
 #include "vtkPolyData.h"
@@ -24,51 +23,18 @@
 #include <memory>
 #include <stdexcept>
 #include <vector>
-#include <unistd.h>
 
 namespace atp
 {
 
 namespace
 {
-/// Collects the first VTK error message of the objects it observes, instead of VTK's output
-/// window: the command reports one clear line.
-struct FirstError
-{
-  vtkNew<vtkCallbackCommand> Command;
-  std::string Message;
-  FirstError()
-  {
-    Command->SetClientData(this);
-    Command->SetCallback([](vtkObject*, unsigned long, void* self, void* message) {
-      auto* first = static_cast<FirstError*>(self);
-      if (first->Message.empty() && message)
-      {
-        // VTK's text: "ERROR: In file, line N\nvtkClass (0x...): what went wrong".
-        std::string text = static_cast<const char*>(message);
-        while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
-        {
-          text.pop_back();
-        }
-        const std::size_t line = text.find('\n') + 1; // 0 when there is one line
-        const std::size_t object = text.find("): ", line);
-        first->Message = object == std::string::npos ? text : text.substr(object + 3);
-        first->Message = first->Message.substr(0, first->Message.find('\n'));
-      }
-    });
-  }
-};
-
-bool EndsWith(const std::string& text, const std::string& suffix)
-{
-  return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 /// A writer for the format `path` names by its extension (.ply, .vtp or .stl), writing to
 /// `file`.
 vtkSmartPointer<vtkAlgorithm> WriterFor(const std::string& path, const std::string& file)
 {
-  if (EndsWith(path, ".ply"))
+  const std::string extension = FileExtension(path);
+  if (extension == ".ply")
   {
     auto ply = vtkSmartPointer<vtkPLYWriter>::New();
     ply->SetFileTypeToBinary();
@@ -76,7 +42,7 @@ vtkSmartPointer<vtkAlgorithm> WriterFor(const std::string& path, const std::stri
     ply->SetFileName(file.c_str());
     return ply;
   }
-  if (EndsWith(path, ".vtp"))
+  if (extension == ".vtp")
   {
     auto vtp = vtkSmartPointer<vtkXMLPolyDataWriter>::New();
     vtp->SetFileName(file.c_str());
@@ -130,22 +96,23 @@ int ExtractCommand(const std::vector<std::string>& arguments)
   {
     throw UsageError("missing -o OUT");
   }
-  // Written beside OUT and renamed when complete: a failed write leaves no file that looks
-  // like a mesh, and an existing OUT untouched.
   const std::string out = cl.Get("output");
-  if (!EndsWith(out, ".ply") && !EndsWith(out, ".vtp") && !EndsWith(out, ".stl"))
+  const std::string extension = FileExtension(out);
+  if (extension != ".ply" && extension != ".vtp" && extension != ".stl")
   {
     throw UsageError("-o must name a .ply, .vtp or .stl file, got '" + out + "'");
   }
-  // (Same extension: VTK's PLY writer appends .ply to names without it.)
-  const std::string partial =
-    out + ".partial-" + std::to_string(::getpid()) + out.substr(out.size() - 4);
-  const vtkSmartPointer<vtkAlgorithm> writer = WriterFor(out, partial);
   int width = 0, height = 0;
   cl.GetSize("size", width, height);
   const double tolerance = cl.GetNumber("tolerance", 1e-3, 1e6);
   const double viewAngle = cl.GetNumber("view-angle", 1, 179);
   const std::vector<double> up = cl.GetNumbers("up", 3);
+
+  // Written beside OUT and renamed when complete: a failed write leaves no file that looks
+  // like a mesh, and an existing OUT untouched.
+  PendingFile pending(out, "mesh");
+  const std::string& partial = pending.PartialPath();
+  const vtkSmartPointer<vtkAlgorithm> writer = WriterFor(out, partial);
 
   auto file = std::make_shared<const ModelFile>(ModelFile::Open(cl.Positional(0)));
   const ModelHeader& h = file->Header();
@@ -186,8 +153,8 @@ int ExtractCommand(const std::vector<std::string>& arguments)
     extract->SetBackfaceCulling(cl.Has("backface"));
     what = "the cut at " + cl.Get("tolerance") + " px for " + cl.Get("size");
   }
-  FirstError errors;
-  extract->AddObserver(vtkCommand::ErrorEvent, errors.Command);
+  FirstVtkError errors;
+  errors.Watch(extract);
   extract->Update();
   if (!errors.Message.empty())
   {
@@ -195,24 +162,25 @@ int ExtractCommand(const std::vector<std::string>& arguments)
   }
 
   writer->SetInputConnection(extract->GetOutputPort());
-  writer->AddObserver(vtkCommand::ErrorEvent, errors.Command);
-  // The executive only repeats that the writer failed, at length: not a message for users.
-  vtkNew<vtkCallbackCommand> ignore;
-  writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, ignore);
+  errors.Watch(writer);
   // VTK's XML writers are not vtkWriters; both kinds have Write().
   auto* xml = vtkXMLWriter::SafeDownCast(writer);
   const int written = xml ? xml->Write() : vtkWriter::SafeDownCast(writer)->Write();
   const vtkIdType triangles = extract->GetOutput()->GetNumberOfPolys();
-  if (!written || writer->GetErrorCode() != vtkErrorCode::NoError || !errors.Message.empty() ||
-    (triangles > 0 && TrianglesIn(out, partial) != static_cast<long long>(triangles)) || std::rename(partial.c_str(), out.c_str()) != 0)
+  const unsigned long code = writer->GetErrorCode();
+  if (code != vtkErrorCode::NoError)
   {
-    std::remove(partial.c_str());
-    const unsigned long code = writer->GetErrorCode();
-    throw std::runtime_error(out + ": cannot write the mesh" +
-      (code != vtkErrorCode::NoError ? std::string(": ") + vtkErrorCode::GetStringFromErrorCode(code)
-        : !errors.Message.empty()    ? ": " + errors.Message
-                                     : std::string(" (the file read back is incomplete)")));
+    throw pending.Failure(vtkErrorCode::GetStringFromErrorCode(code));
   }
+  if (!written || !errors.Message.empty())
+  {
+    throw pending.Failure(errors.Message);
+  }
+  if (triangles > 0 && TrianglesIn(out, partial) != static_cast<long long>(triangles))
+  {
+    throw pending.Failure("the file read back is incomplete");
+  }
+  pending.Commit();
   std::printf("wrote %s: %lld triangles from %lld patches (%s)\n", out.c_str(),
     static_cast<long long>(triangles),
     static_cast<long long>(extract->GetPatchCount()), what.c_str());

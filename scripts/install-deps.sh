@@ -14,6 +14,7 @@ packages=(
   libopenmpi-dev openmpi-bin   # VTK 9.1 on Debian links MPI; distributed build
   xvfb xauth             # headless rendering for tests
   clang libclang-rt-14-dev   # libFuzzer for scripts/fuzz.sh
+  libx11-dev             # XOpenDisplay: no X display is a clear error, not VTK's abort
   mricron-data           # real MRI volumes for the brain isosurface benchmark
 )
 

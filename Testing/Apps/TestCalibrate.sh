@@ -9,28 +9,7 @@ if [ -z "${DISPLAY:-}" ] && command -v xvfb-run > /dev/null; then
 fi
 atp=$1
 data=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-passed=0
-out=""
-
-# expect CODE PATTERN -- command...: exit code CODE and output (stdout+stderr) matching PATTERN.
-expect() {
-  local code=$1 pattern=$2
-  shift 3
-  local status
-  out=$("$@" 2>&1)
-  status=$?
-  if [ "$status" -ne "$code" ] || ! grep -qE -- "$pattern" <<<"$out"; then
-    echo "FAIL: $* -> exit $status (want $code), output:"
-    sed 's/^/    /' <<<"$out" | head -30
-    echo "    (wanted /$pattern/)"
-    failures=$((failures + 1))
-  else
-    passed=$((passed + 1))
-  fi
-}
+source "$(dirname "$0")/expect.sh"
 
 small=(--views 3 --size 160x120)
 expect 0 "--threshold T" -- "$atp" calibrate --help

@@ -5,27 +5,7 @@
 set -u
 atp=$1
 data=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-passed=0
-
-# expect CODE PATTERN -- command...: exit code CODE and output (stdout+stderr) matching PATTERN.
-expect() {
-  local code=$1 pattern=$2
-  shift 3
-  local out status
-  out=$("$@" 2>&1)
-  status=$?
-  if [ "$status" -ne "$code" ] || ! grep -qE -- "$pattern" <<<"$out"; then
-    echo "FAIL: $* -> exit $status (want $code), output:"
-    sed 's/^/    /' <<<"$out" | head -20
-    echo "    (wanted /$pattern/)"
-    failures=$((failures + 1))
-  else
-    passed=$((passed + 1))
-  fi
-}
+source "$(dirname "$0")/expect.sh"
 
 expect 0 "commands:" -- "$atp" --help
 expect 2 "usage: atp" -- "$atp"

@@ -1,0 +1,41 @@
+// An output file written beside its final name and renamed into place only when complete: a
+// failed or interrupted command leaves no half-written file, and an existing one untouched.
+#ifndef atpPendingFile_h
+#define atpPendingFile_h
+
+#include <stdexcept>
+#include <string>
+
+namespace atp
+{
+
+class PendingFile
+{
+public:
+  /// Creates the partial file at once, so an unwritable place is reported before any long
+  /// work. `what` names the content for messages ("mesh", "plot"). Throws std::runtime_error
+  /// "PATH: cannot write the WHAT: reason".
+  PendingFile(std::string path, std::string what);
+  /// Removes the partial file unless committed.
+  ~PendingFile();
+
+  const std::string& Path() const { return FinalPath; }
+  /// Where to write: beside Path() and ending with its extension (VTK's PLY writer appends
+  /// .ply to names without it).
+  const std::string& PartialPath() const { return Partial; }
+  /// The error to throw when writing failed: "PATH: cannot write the WHAT" and the reason.
+  std::runtime_error Failure(const std::string& reason) const;
+  /// Renames the partial file into place; throws Failure() when that fails.
+  void Commit();
+
+  PendingFile(const PendingFile&) = delete;
+  PendingFile& operator=(const PendingFile&) = delete;
+
+private:
+  std::string FinalPath, What, Partial;
+  bool Committed = false;
+};
+
+}
+
+#endif
