@@ -55,6 +55,10 @@ void InstallHandler()
 
 bool CopyFromMapping(void* destination, const void* source, std::size_t bytes)
 {
+  if (bytes == 0)
+  {
+    return true; // an empty vector's data() may be null, which memcpy must not see
+  }
   static std::once_flag installed;
   std::call_once(installed, InstallHandler);
   sigjmp_buf jump;

@@ -74,6 +74,10 @@ private:
   template <typename T>
   static void Append(ScratchArray<T>& array, std::size_t& used, const T* values, std::size_t n)
   {
+    if (n == 0)
+    {
+      return; // a slab without surface: its arrays may be null, which memcpy must not see
+    }
     if (used + n > array.Size())
     {
       array.Resize(std::max(used + n, 2 * array.Size()));
