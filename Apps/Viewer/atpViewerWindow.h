@@ -46,6 +46,7 @@ public:
   bool OpenModel(const QString& path);
   /// Builds `mesh` into `model` in the background with a progress dialog, then opens it.
   void BuildModel(const QString& mesh, const QString& model);
+  bool Building() const { return Build != nullptr; }
   /// Writes what the view shows as PNG; false (and an error shown) when it cannot.
   bool SaveScreenshot(const QString& path);
 

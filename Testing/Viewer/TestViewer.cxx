@@ -23,12 +23,15 @@
 #include <QFile>
 #include <QLabel>
 #include <QMessageBox>
+#include <QPointer>
 #include <QProgressDialog>
+#include <QPushButton>
 #include <QSurfaceFormat>
 #include <QTest>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <fstream>
@@ -235,21 +238,22 @@ TEST(Viewer, ACorruptModelShowsAnErrorAndTheViewerKeepsWorking)
 TEST(Viewer, ARecordedCameraPathPlaysBackToTheRecordedCamera)
 {
   Viewer viewer;
+  Type(viewer->Properties()->TolerancePixels(), "8"); // fewer triangles: quicker frames
   ASSERT_TRUE(viewer->OpenModel(QString::fromStdString(TorusModel())));
   ASSERT_TRUE(viewer.WaitUntilConverged());
 
   viewer->StartRecording();
   QWidget* view = viewer->View();
-  Drag(view, Qt::LeftButton, QPoint(200, 150), QPoint(260, 100), 8, 20);
+  Drag(view, Qt::LeftButton, QPoint(200, 150), QPoint(260, 100), 5, 20);
   QTest::qWait(100); // a pause, kept in the path
   WheelForward(view);
-  Drag(view, Qt::LeftButton, QPoint(200, 150), QPoint(150, 150), 8, 20);
+  Drag(view, Qt::LeftButton, QPoint(200, 150), QPoint(150, 150), 5, 20);
   const auto recorded = CameraOf(viewer->Renderer());
   const std::string path = TempPath("flight.camera");
   ASSERT_TRUE(viewer->StopRecording(QString::fromStdString(path)));
   const atp::CameraPath flight = atp::CameraPath::Load(path);
-  EXPECT_GT(flight.Keyframes().size(), 10u);
-  EXPECT_GT(flight.Duration(), 0.3);
+  EXPECT_GT(flight.Keyframes().size(), 8u);
+  EXPECT_GT(flight.Duration(), 0.2);
 
   // Elsewhere, then back along the path.
   Drag(view, Qt::LeftButton, QPoint(100, 100), QPoint(300, 250), 5);
@@ -268,6 +272,54 @@ TEST(Viewer, ARecordedCameraPathPlaysBackToTheRecordedCamera)
   EXPECT_TRUE(ErrorBox(viewer.Window.get())->text().contains(QString::fromStdString(bad) + ":3:"));
   EXPECT_FALSE(viewer->Playing());
   ::unlink(bad.c_str());
+}
+
+TEST(Viewer, BuildsAModelFromAMeshBehindAProgressDialog)
+{
+  Viewer viewer;
+  const std::string model = TempPath("built.atp");
+  viewer->BuildModel(ATP_DATA_DIR "/bumpy-torus.ply", QString::fromStdString(model));
+  QPointer<QProgressDialog> progress = viewer->findChild<QProgressDialog*>("buildProgress");
+  ASSERT_NE(progress, nullptr);
+  EXPECT_TRUE(progress->isVisible());
+  EXPECT_TRUE(viewer->Building());
+  int shown = 0; // the most progress the dialog showed (of 1000)
+  ASSERT_TRUE(QTest::qWaitFor([&] {
+    shown = progress ? std::max(shown, progress->value()) : shown;
+    return !viewer->Building();
+  }, 120000));
+  EXPECT_GT(shown, 0) << "the dialog never showed the builder's progress";
+  EXPECT_EQ(ErrorBox(viewer.Window.get()), nullptr);
+  ASSERT_TRUE(viewer.WaitUntilConverged());
+  EXPECT_TRUE(viewer->windowTitle().startsWith("atp-test-")) << viewer->windowTitle().toStdString();
+  EXPECT_GT(viewer->Mapper()->GetStatistics().Triangles, 0u);
+  EXPECT_EQ(::unlink(model.c_str()), 0) << "the model was not written";
+}
+
+TEST(Viewer, ABuildCanBeCancelledAndABadMeshIsAnError)
+{
+  Viewer viewer;
+  const std::string model = TempPath("cancelled.atp");
+  viewer->BuildModel(ATP_DATA_DIR "/bumpy-torus.ply", QString::fromStdString(model));
+  auto* progress = viewer->findChild<QProgressDialog*>("buildProgress");
+  ASSERT_NE(progress, nullptr);
+  auto* cancel = progress->findChild<QPushButton*>();
+  ASSERT_NE(cancel, nullptr);
+  QTest::mouseClick(cancel, Qt::LeftButton);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !viewer->Building(); }, 60000));
+  EXPECT_EQ(ErrorBox(viewer.Window.get()), nullptr) << "cancelling is not an error";
+  EXPECT_NE(::access(model.c_str(), F_OK), 0) << "a cancelled build left a model";
+  EXPECT_FALSE(viewer->Converged()) << "nothing to show";
+
+  const std::string mesh = TempPath("broken.ply");
+  std::ofstream(mesh) << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n1 2\n";
+  viewer->BuildModel(QString::fromStdString(mesh), QString::fromStdString(model));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !viewer->Building(); }, 60000));
+  QMessageBox* box = ErrorBox(viewer.Window.get());
+  ASSERT_NE(box, nullptr);
+  EXPECT_TRUE(box->text().contains("broken.ply")) << box->text().toStdString();
+  EXPECT_NE(::access(model.c_str(), F_OK), 0);
+  ::unlink(mesh.c_str());
 }
 
 TEST(CameraPath, SavesAndLoadsExactlyAndInterpolates)
