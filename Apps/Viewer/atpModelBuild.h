@@ -1,5 +1,7 @@
-// Builds a model from a mesh file in a worker thread (vtkATPBuilder), behind a progress dialog
-// that follows the builder's progress events and whose Cancel button aborts the build.
+// Builds a model in a worker thread (vtkATPBuilder), behind a progress dialog that follows the
+// progress events and whose Cancel button aborts the build. The input is a mesh file, streamed
+// by the builder, or a volume (NIfTI .nii/.nii.gz, VTK .vti) whose isosurface is extracted
+// first with flying edges (the volume is read whole).
 #ifndef atpModelBuild_h
 #define atpModelBuild_h
 
@@ -20,19 +22,21 @@ class ModelBuild : public QObject
   Q_OBJECT
 
 public:
-  /// Starts building `mesh` into `model`; the dialog is window-modal over `parent`.
-  ModelBuild(const QString& mesh, const QString& model, QWidget* parent);
+  /// True for the volume formats the build contours (by the file name).
+  static bool IsVolume(const QString& path);
+
+  /// Starts building `input` into `model` (`isoValue` is used for volumes only); the dialog is
+  /// window-modal over `parent`.
+  ModelBuild(const QString& input, double isoValue, const QString& model, QWidget* parent);
   /// Cancels a build still running and waits for it.
   ~ModelBuild() override;
-
-  QProgressDialog* Dialog() const { return Progress; }
 
 signals:
   /// The build ended: `error` is empty on success; `cancelled` when Cancel stopped it.
   void Finished(const QString& model, const QString& error, bool cancelled);
 
 private:
-  void Run(const QString& mesh, const QString& model);
+  void Run(const QString& input, double isoValue, const QString& model);
 
   QProgressDialog* Progress;
   std::atomic<bool> Cancelled{ false };

@@ -1,5 +1,6 @@
 // atp-view: the desktop viewer of ATP models (also run as `atp view`).
 #include "atpCommandLine.h"
+#include "atpModelBuild.h"
 #include "atpPropertiesPanel.h"
 #include "atpViewerWindow.h"
 #include "vtkATPMapper.h"
@@ -22,14 +23,15 @@ namespace
 atp::CommandLine Options()
 {
   atp::CommandLine cl("view",
-    "Shows a multiresolution model (.atp) view-dependently, or builds one from a mesh first\n"
-    "(with a progress dialog). Drag with the left button to rotate, the right button or the\n"
+    "Shows a multiresolution model (.atp) view-dependently, or builds one first from a mesh\n"
+    "or from the isosurface of a volume (with a progress dialog). Drag with the left button to rotate, the right button or the\n"
     "wheel to zoom, the middle button to pan. The options below set the panel's properties\n"
     "and script a session: play a camera path, record one, save a screenshot and quit.");
-  cl.AddPositional("MODEL", "a model (.atp) or a mesh to build one from (.ply, .obj, .stl, .vtp)",
-    true);
-  cl.AddOption("output", "o", "OUT.atp", "where a mesh's model is built",
-    "the mesh's name with .atp, beside it");
+  cl.AddPositional("MODEL", "a model (.atp), or a mesh (.ply, .obj, .stl, .vtp) or volume (.nii,\n"
+    "      .nii.gz, .vti) to build one from", true);
+  cl.AddOption("output", "o", "OUT.atp", "where the model of a mesh or volume is built",
+    "the input's name with .atp, beside it");
+  cl.AddOption("iso", "", "VALUE", "iso value of a volume's surface (needed for volumes)");
   cl.AddOption("tolerance", "", "PX", "screen-space tolerance in pixels", "1");
   cl.AddOption("cache-budget", "", "MiB", "GPU memory for patches", "512");
   cl.AddFlag("no-prefetch", "no speculative prefetching");
@@ -54,6 +56,14 @@ int main(int argc, char** argv)
     if (!cl.Parse(std::vector<std::string>(argv + 1, argv + argc)))
     {
       return 0;
+    }
+    if (cl.PositionalCount() > 0 && atp::ModelBuild::IsVolume(QString::fromStdString(cl.Positional(0))))
+    {
+      if (!cl.Has("iso"))
+      {
+        throw atp::UsageError("a volume needs --iso VALUE (the surface's iso value)");
+      }
+      cl.GetNumber("iso", -1e300, 1e300);
     }
   }
   catch (const atp::UsageError& e)
@@ -145,9 +155,11 @@ int main(int argc, char** argv)
   if (cl.PositionalCount() > 0)
   {
     const QString output = cl.Has("output") ? QString::fromStdString(cl.Get("output")) : QString();
+    const double isoValue = cl.Has("iso") ? cl.GetNumber("iso", -1e300, 1e300) : 0;
     // Once the event loop runs, so the window is on screen behind a build's progress dialog.
-    QTimer::singleShot(0, &window,
-      [&, output] { window.OpenFile(QString::fromStdString(cl.Positional(0)), output); });
+    QTimer::singleShot(0, &window, [&, output, isoValue] {
+      window.OpenFile(QString::fromStdString(cl.Positional(0)), output, isoValue);
+    });
   }
   else if (scripted)
   {

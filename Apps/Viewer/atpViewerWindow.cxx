@@ -1,5 +1,6 @@
 #include "atpViewerWindow.h"
 
+#include "atpErrorCapture.h"
 #include "atpModelBuild.h"
 #include "atpPropertiesPanel.h"
 #include "atpRenderStatistics.h"
@@ -25,6 +26,7 @@
 #include <QDockWidget>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QInputDialog>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QStatusBar>
@@ -36,51 +38,6 @@ namespace atp
 {
 namespace
 {
-
-/// The message of a VTK error event, whose text is
-/// "ERROR: In FILE, line N\nCLASS (ADDRESS): MESSAGE\n\n".
-std::string ErrorEventMessage(void* callData)
-{
-  std::string text = static_cast<const char*>(callData);
-  const std::size_t object = text.find("): ");
-  if (object != std::string::npos)
-  {
-    text = text.substr(object + 3);
-  }
-  while (!text.empty() && text.back() == '\n')
-  {
-    text.pop_back();
-  }
-  return text;
-}
-
-/// Collects the text of the VTK errors an object reports, instead of printing them, for as
-/// long as it lives.
-class ErrorCapture
-{
-public:
-  explicit ErrorCapture(vtkObject* object)
-    : Observed(object)
-  {
-    Command->SetClientData(this);
-    Command->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
-      const std::string text = ErrorEventMessage(call);
-      auto* self = static_cast<ErrorCapture*>(client);
-      self->Message = self->Message.empty() ? text : self->Message + "\n" + text;
-    });
-    Tag = object->AddObserver(vtkCommand::ErrorEvent, Command);
-  }
-  ~ErrorCapture() { Observed->RemoveObserver(Tag); }
-  ErrorCapture(const ErrorCapture&) = delete;
-  ErrorCapture& operator=(const ErrorCapture&) = delete;
-
-  std::string Message;
-
-private:
-  vtkObject* Observed;
-  vtkNew<vtkCallbackCommand> Command;
-  unsigned long Tag = 0;
-};
 
 /// ParaView's default background.
 constexpr double Background[3] = { 0.32, 0.34, 0.43 };
@@ -113,7 +70,7 @@ ViewerWindow::ViewerWindow(QWidget* parent)
   dock("propertiesDock", tr("Properties"), PropertiesDock);
   dock("statisticsDock", tr("Statistics"), StatisticsDock);
   CreateActions();
-  statusBar()->showMessage(tr("Open a model (.atp) or build one from a mesh"));
+  statusBar()->showMessage(tr("Open a model (.atp) or build one from a mesh or a volume"));
   resize(1100, 750);
 
   connect(PropertiesDock, &PropertiesPanel::Changed, this, &ViewerWindow::Render);
@@ -170,8 +127,8 @@ void ViewerWindow::CreateActions()
     return action;
   };
   add(file, tr("&Open Model..."), QKeySequence::Open, &ViewerWindow::ChooseModel);
-  BuildAction = add(file, tr("&Build Model from Mesh..."), QKeySequence(tr("Ctrl+B")),
-    &ViewerWindow::ChooseMesh);
+  BuildAction = add(file, tr("&Build Model..."), QKeySequence(tr("Ctrl+B")),
+    &ViewerWindow::ChooseInput);
   add(file, tr("Save &Screenshot..."), QKeySequence(tr("Ctrl+S")), &ViewerWindow::ChooseScreenshot);
   file->addSeparator();
   file->addAction(tr("&Quit"), this, &QWidget::close, QKeySequence::Quit);
@@ -197,30 +154,30 @@ void ViewerWindow::ShowError(const QString& title, const QString& message)
   emit ErrorShown(message);
 }
 
-void ViewerWindow::OpenFile(const QString& path, const QString& model)
+void ViewerWindow::OpenFile(const QString& path, const QString& model, double isoValue)
 {
   if (QFileInfo(path).suffix().compare("atp", Qt::CaseInsensitive) == 0)
   {
     OpenModel(path);
     return;
   }
-  const QFileInfo mesh(path);
-  BuildModel(path, model.isEmpty() ? mesh.dir().filePath(mesh.completeBaseName() + ".atp") : model);
+  const QFileInfo input(path);
+  BuildModel(path, model.isEmpty() ? input.dir().filePath(input.completeBaseName() + ".atp") : model,
+    isoValue);
 }
 
 bool ViewerWindow::OpenModel(const QString& path)
 {
   auto reader = vtkSmartPointer<vtkATPReader>::New();
-  ErrorCapture errors(reader);
-  // The pipeline adds only "returned failure" to the reader's own message.
-  ErrorCapture pipelineErrors(reader->GetExecutive());
+  // The pipeline's own error ("returned failure") comes after the reader's: not shown.
+  const ErrorCapture errors({ reader, reader->GetExecutive() });
   reader->SetFileName(path.toLocal8Bit().constData());
   reader->Update();
-  if (!errors.Message.empty() || reader->GetErrorCode())
+  if (!errors.Message().empty() || reader->GetErrorCode())
   {
     ShowError(tr("Cannot open %1").arg(QFileInfo(path).fileName()),
-      errors.Message.empty() ? tr("%1: not a valid model").arg(path)
-                             : QString::fromStdString(errors.Message));
+      errors.Message().empty() ? tr("%1: not a valid model").arg(path)
+                               : QString::fromStdString(errors.Message()));
     return false;
   }
   Reader = reader;
@@ -236,15 +193,15 @@ bool ViewerWindow::OpenModel(const QString& path)
   return true;
 }
 
-void ViewerWindow::BuildModel(const QString& mesh, const QString& model)
+void ViewerWindow::BuildModel(const QString& input, const QString& model, double isoValue)
 {
   if (Build)
   {
     return; // one build at a time (the action is disabled meanwhile)
   }
   BuildAction->setEnabled(false);
-  statusBar()->showMessage(tr("Building %1 from %2...").arg(model, mesh));
-  Build = new ModelBuild(mesh, model, this);
+  statusBar()->showMessage(tr("Building %1 from %2...").arg(model, input));
+  Build = new ModelBuild(input, isoValue, model, this);
   connect(Build, &ModelBuild::Finished, this,
     [this](const QString& built, const QString& error, bool cancelled) {
       Build->deleteLater();
@@ -271,14 +228,14 @@ bool ViewerWindow::SaveScreenshot(const QString& path)
   capture->SetInput(RenderWindow);
   capture->ReadFrontBufferOff();
   vtkNew<vtkPNGWriter> writer;
-  ErrorCapture errors(writer);
+  const ErrorCapture errors({ writer });
   writer->SetFileName(path.toLocal8Bit().constData());
   writer->SetInputConnection(capture->GetOutputPort());
   writer->Write();
-  if (!errors.Message.empty() || writer->GetErrorCode())
+  if (!errors.Message().empty() || writer->GetErrorCode())
   {
-    ShowError(tr("Cannot save the screenshot"),
-      errors.Message.empty() ? tr("%1: cannot write").arg(path) : QString::fromStdString(errors.Message));
+    ShowError(tr("Cannot save the screenshot"), errors.Message().empty()
+        ? tr("%1: cannot write").arg(path) : QString::fromStdString(errors.Message()));
     return false;
   }
   statusBar()->showMessage(tr("Saved %1").arg(path));
@@ -394,20 +351,32 @@ void ViewerWindow::ChooseModel()
   }
 }
 
-void ViewerWindow::ChooseMesh()
+void ViewerWindow::ChooseInput()
 {
-  const QString mesh = QFileDialog::getOpenFileName(this, tr("Build Model from Mesh"), QString(),
-    tr("Meshes (*.ply *.obj *.stl *.vtp);;All files (*)"));
-  if (mesh.isEmpty())
+  const QString input = QFileDialog::getOpenFileName(this, tr("Build Model from a Mesh or Volume"),
+    QString(), tr("Meshes and volumes (*.ply *.obj *.stl *.vtp *.nii *.nii.gz *.vti);;All files (*)"));
+  if (input.isEmpty())
   {
     return;
   }
-  const QFileInfo info(mesh);
+  double isoValue = 0;
+  if (ModelBuild::IsVolume(input))
+  {
+    bool ok = false;
+    isoValue = QInputDialog::getDouble(this, tr("Isosurface"), tr("Iso value of the surface:"),
+      LastIsoValue, -1e300, 1e300, 6, &ok);
+    if (!ok)
+    {
+      return;
+    }
+    LastIsoValue = isoValue;
+  }
+  const QFileInfo info(input);
   const QString model = QFileDialog::getSaveFileName(this, tr("Save Model As"),
     info.dir().filePath(info.completeBaseName() + ".atp"), tr("ATP models (*.atp)"));
   if (!model.isEmpty())
   {
-    BuildModel(mesh, model);
+    BuildModel(input, model, isoValue);
   }
 }
 

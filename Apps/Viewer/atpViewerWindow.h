@@ -1,6 +1,6 @@
 // atp-view's main window, laid out like ParaView's: the render view in the middle, the
 // properties and statistics panels docked at the left, File and Camera menus and a toolbar.
-// It opens a .atp model (or builds one from a mesh first), keeps rendering while the mapper
+// It opens a .atp model (or builds one from a mesh or a volume first), keeps rendering while the mapper
 // streams patches in, saves screenshots, and records and plays back camera paths.
 //
 // Errors a user can cause (a missing or corrupt model, a mesh that does not build, a bad
@@ -39,13 +39,15 @@ public:
   explicit ViewerWindow(QWidget* parent = nullptr);
   ~ViewerWindow() override;
 
-  /// Opens a model, or a mesh (.ply, .obj, .stl, .vtp) by building it into `model` first
-  /// (default: the mesh's name with .atp, beside it).
-  void OpenFile(const QString& path, const QString& model = QString());
+  /// Opens a model, or a mesh (.ply, .obj, .stl, .vtp) or a volume (.nii, .nii.gz, .vti: its
+  /// isosurface at `isoValue`) by building it into `model` first (default: the input's name
+  /// with .atp, beside it).
+  void OpenFile(const QString& path, const QString& model = QString(), double isoValue = 0);
   /// Shows the model at `path`; false (and an error shown) when it cannot be opened.
   bool OpenModel(const QString& path);
-  /// Builds `mesh` into `model` in the background with a progress dialog, then opens it.
-  void BuildModel(const QString& mesh, const QString& model);
+  /// Builds a mesh, or a volume's isosurface at `isoValue`, into `model` in the background
+  /// with a progress dialog, then opens it.
+  void BuildModel(const QString& input, const QString& model, double isoValue = 0);
   bool Building() const { return Build != nullptr; }
   /// Writes what the view shows as PNG; false (and an error shown) when it cannot.
   bool SaveScreenshot(const QString& path);
@@ -85,7 +87,7 @@ private:
   void Rendered();
   void PlaybackStep();
   void ChooseModel();
-  void ChooseMesh();
+  void ChooseInput();
   void ChooseScreenshot();
   void ToggleRecording(bool on);
   void ChooseCameraPath();
@@ -108,6 +110,7 @@ private:
   QElapsedTimer Clock;     ///< since recording or playback started
   CameraPath Path;
   bool IsRecording = false;
+  double LastIsoValue = 0;
 };
 
 }

@@ -23,6 +23,7 @@ is_png() {
 expect 0 "usage: atp view \[MODEL\]" -- "$atp" view --help
 expect 2 "unknown option --bogus" -- "$atp" view --bogus
 expect 2 "expected from 0 to 1 argument" -- "$atp" view a.atp b.atp
+expect 2 "a volume needs --iso VALUE" -- "$atp" view brain.nii.gz
 expect 2 "tolerance must be a number" -- "$atp" view a.atp --tolerance fine --screenshot x.png
 
 "$atp" build "$data/bumpy-torus.ply" -o "$work/torus.atp" --quiet >/dev/null || fail "atp build"

@@ -14,8 +14,10 @@
 
 #include "QVTKOpenGLNativeWidget.h"
 #include "vtkCamera.h"
+#include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkRenderer.h"
+#include "vtkXMLImageDataWriter.h"
 
 #include <QApplication>
 #include <QCheckBox>
@@ -320,6 +322,61 @@ TEST(Viewer, ABuildCanBeCancelledAndABadMeshIsAnError)
   EXPECT_TRUE(box->text().contains("broken.ply")) << box->text().toStdString();
   EXPECT_NE(::access(model.c_str(), F_OK), 0);
   ::unlink(mesh.c_str());
+}
+
+/// A distance field around the centre of a 24^3 grid, as VTK image data: its isosurface at 8
+/// is a sphere of radius 8.
+std::string SphereVolume()
+{
+  vtkNew<vtkImageData> volume;
+  volume->SetDimensions(24, 24, 24);
+  volume->AllocateScalars(VTK_FLOAT, 1);
+  auto* values = static_cast<float*>(volume->GetScalarPointer());
+  for (int z = 0; z < 24; ++z)
+  {
+    for (int y = 0; y < 24; ++y)
+    {
+      for (int x = 0; x < 24; ++x)
+      {
+        *values++ = float(std::sqrt((x - 11.5) * (x - 11.5) + (y - 11.5) * (y - 11.5) + (z - 11.5) * (z - 11.5)));
+      }
+    }
+  }
+  const std::string path = TempPath("sphere.vti");
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetInputData(volume);
+  writer->SetFileName(path.c_str());
+  EXPECT_EQ(writer->Write(), 1);
+  return path;
+}
+
+TEST(Viewer, BuildsAModelFromAVolumesIsosurface)
+{
+  Viewer viewer;
+  const std::string volume = SphereVolume();
+  const std::string model = TempPath("sphere.atp");
+  viewer->BuildModel(QString::fromStdString(volume), QString::fromStdString(model), 8);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !viewer->Building(); }, 60000));
+  EXPECT_EQ(ErrorBox(viewer.Window.get()), nullptr);
+  ASSERT_TRUE(viewer.WaitUntilConverged());
+  EXPECT_GT(viewer->Mapper()->GetStatistics().Triangles, 500u);
+  const double* bounds = viewer->Mapper()->GetBounds();
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    EXPECT_NEAR(bounds[2 * axis], 11.5 - 8, 0.1);
+    EXPECT_NEAR(bounds[2 * axis + 1], 11.5 + 8, 0.1);
+  }
+  ::unlink(model.c_str());
+
+  // Not a volume: the error names the file.
+  std::ofstream(volume) << "not XML at all\n";
+  viewer->BuildModel(QString::fromStdString(volume), QString::fromStdString(model), 8);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !viewer->Building(); }, 60000));
+  QMessageBox* box = ErrorBox(viewer.Window.get());
+  ASSERT_NE(box, nullptr);
+  EXPECT_TRUE(box->text().contains("sphere.vti")) << box->text().toStdString();
+  EXPECT_NE(::access(model.c_str(), F_OK), 0);
+  ::unlink(volume.c_str());
 }
 
 TEST(CameraPath, SavesAndLoadsExactlyAndInterpolates)
