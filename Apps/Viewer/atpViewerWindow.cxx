@@ -15,6 +15,7 @@
 #include "vtkCommand.h"
 #include "vtkExecutive.h"
 #include "vtkGenericOpenGLRenderWindow.h"
+#include "vtkInteractorObserver.h"
 #include "vtkInteractorStyleTrackballCamera.h"
 #include "vtkPNGWriter.h"
 #include "vtkRenderWindowInteractor.h"
@@ -111,6 +112,11 @@ ViewerWindow::ViewerWindow(QWidget* parent)
 ViewerWindow::~ViewerWindow()
 {
   delete Build; // cancels and waits for a build still running
+  // The render view, a child widget, outlives the members: no callbacks into a window that is
+  // going away.
+  SceneRenderer->RemoveAllObservers();
+  ModelMapper->RemoveAllObservers();
+  RenderView->interactor()->GetInteractorStyle()->RemoveAllObservers();
 }
 
 void ViewerWindow::CreateActions()
