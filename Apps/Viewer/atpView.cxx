@@ -50,20 +50,33 @@ atp::CommandLine Options()
 
 int main(int argc, char** argv)
 {
+  // Everything is checked before Qt starts, so that mistakes are reported without a display.
   atp::CommandLine cl = Options();
+  double tolerance = 1, isoValue = 0;
+  long long cacheBudget = 512;
+  int width = 0, height = 0;
   try
   {
     if (!cl.Parse(std::vector<std::string>(argv + 1, argv + argc)))
     {
       return 0;
     }
-    if (cl.PositionalCount() > 0 && atp::ModelBuild::IsVolume(QString::fromStdString(cl.Positional(0))))
+    tolerance = cl.Has("tolerance") ? cl.GetNumber("tolerance", 0.1, 1000) : tolerance;
+    cacheBudget = cl.Has("cache-budget") ? cl.GetInteger("cache-budget", 1, 1 << 20) : cacheBudget;
+    if (cl.Has("size"))
     {
-      if (!cl.Has("iso"))
-      {
-        throw atp::UsageError("a volume needs --iso VALUE (the surface's iso value)");
-      }
-      cl.GetNumber("iso", -1e300, 1e300);
+      cl.GetSize("size", width, height);
+    }
+    const bool volume =
+      cl.PositionalCount() > 0 && atp::ModelBuild::IsVolume(QString::fromStdString(cl.Positional(0)));
+    if (volume && !cl.Has("iso"))
+    {
+      throw atp::UsageError("a volume needs --iso VALUE (the surface's iso value)");
+    }
+    isoValue = cl.Has("iso") ? cl.GetNumber("iso", -1e300, 1e300) : isoValue;
+    if (cl.Has("screenshot") && cl.PositionalCount() == 0)
+    {
+      throw atp::UsageError("--screenshot needs a MODEL");
     }
   }
   catch (const atp::UsageError& e)
@@ -76,31 +89,16 @@ int main(int argc, char** argv)
   QApplication application(argc, argv);
   QApplication::setApplicationName("atp-view");
   atp::ViewerWindow window;
-  try
+  // Through the panel's widgets, so the panel shows what the mapper does.
+  atp::PropertiesPanel* properties = window.Properties();
+  properties->TolerancePixels()->setValue(tolerance);
+  properties->CacheBudgetMiB()->setValue(int(cacheBudget));
+  properties->Prefetching()->setChecked(!cl.Has("no-prefetch"));
+  properties->BackfaceCulling()->setChecked(cl.Has("backface-culling"));
+  properties->PatchColoring()->setChecked(cl.Has("patch-coloring"));
+  if (width > 0)
   {
-    atp::PropertiesPanel* properties = window.Properties();
-    if (cl.Has("tolerance"))
-    {
-      properties->TolerancePixels()->setValue(cl.GetNumber("tolerance", 0.1, 1000));
-    }
-    if (cl.Has("cache-budget"))
-    {
-      properties->CacheBudgetMiB()->setValue(int(cl.GetInteger("cache-budget", 1, 1 << 20)));
-    }
-    properties->Prefetching()->setChecked(!cl.Has("no-prefetch"));
-    properties->BackfaceCulling()->setChecked(cl.Has("backface-culling"));
-    properties->PatchColoring()->setChecked(cl.Has("patch-coloring"));
-    if (cl.Has("size"))
-    {
-      int width = 0, height = 0;
-      cl.GetSize("size", width, height);
-      window.View()->setFixedSize(width, height);
-    }
-  }
-  catch (const atp::UsageError& e)
-  {
-    std::fprintf(stderr, "atp view: %s\n", e.what());
-    return 2;
+    window.View()->setFixedSize(width, height);
   }
 
   // A scripted session (--screenshot) ends with an error instead of waiting on a message box.
@@ -131,9 +129,9 @@ int main(int argc, char** argv)
     {
       window.StartRecording();
     }
-    if (cl.Has("play") && window.PlayCameraPath(QString::fromStdString(cl.Get("play"))))
+    if (cl.Has("play"))
     {
-      if (scripted)
+      if (window.PlayCameraPath(QString::fromStdString(cl.Get("play"))) && scripted)
       {
         QObject::connect(&window, &atp::ViewerWindow::PlaybackFinished, saveWhenConverged);
       }
@@ -155,16 +153,10 @@ int main(int argc, char** argv)
   if (cl.PositionalCount() > 0)
   {
     const QString output = cl.Has("output") ? QString::fromStdString(cl.Get("output")) : QString();
-    const double isoValue = cl.Has("iso") ? cl.GetNumber("iso", -1e300, 1e300) : 0;
     // Once the event loop runs, so the window is on screen behind a build's progress dialog.
-    QTimer::singleShot(0, &window, [&, output, isoValue] {
+    QTimer::singleShot(0, &window, [&, output] {
       window.OpenFile(QString::fromStdString(cl.Positional(0)), output, isoValue);
     });
-  }
-  else if (scripted)
-  {
-    std::fprintf(stderr, "atp view: --screenshot needs a MODEL\n");
-    return 2;
   }
   const int result = application.exec();
   return status ? status : result;

@@ -23,8 +23,10 @@ is_png() {
 expect 0 "usage: atp view \[MODEL\]" -- "$atp" view --help
 expect 2 "unknown option --bogus" -- "$atp" view --bogus
 expect 2 "expected from 0 to 1 argument" -- "$atp" view a.atp b.atp
-expect 2 "a volume needs --iso VALUE" -- "$atp" view brain.nii.gz
-expect 2 "tolerance must be a number" -- "$atp" view a.atp --tolerance fine --screenshot x.png
+# Mistakes in the command line are reported before Qt starts: no display needed.
+expect 2 "a volume needs --iso VALUE" -- env -u DISPLAY "$atp" view brain.nii.gz
+expect 2 "screenshot needs a MODEL" -- env -u DISPLAY "$atp" view --screenshot x.png
+expect 2 "tolerance must be a number" -- env -u DISPLAY "$atp" view a.atp --tolerance fine
 
 "$atp" build "$data/bumpy-torus.ply" -o "$work/torus.atp" --quiet >/dev/null || fail "atp build"
 expect 0 "" -- "$atp" view "$work/torus.atp" --size 320x240 --tolerance 4 --record "$work/still.camera" \
