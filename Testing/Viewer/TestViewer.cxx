@@ -13,14 +13,19 @@
 #include "vtkATPMapper.h"
 
 #include "QVTKOpenGLNativeWidget.h"
+#include "vtkActor.h"
+#include "vtkActorCollection.h"
 #include "vtkCamera.h"
 #include "vtkImageData.h"
+#include "vtkLightCollection.h"
+#include "vtkProperty.h"
 #include "vtkNew.h"
 #include "vtkRenderer.h"
 #include "vtkXMLImageDataWriter.h"
 
 #include <QApplication>
 #include <QCheckBox>
+#include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFile>
 #include <QLabel>
@@ -198,6 +203,46 @@ TEST(Viewer, PropertiesAndTrackballMatchTheBaseline)
   EXPECT_TRUE(MatchesBaseline(screenshot, "ATPViewerTrackball", BaselineThreshold, error))
     << "image error " << error;
   ::unlink(screenshot.c_str());
+}
+
+TEST(Viewer, EveryPropertyReachesTheMapperActorOrRenderer)
+{
+  Viewer viewer;
+  ASSERT_TRUE(viewer->OpenModel(QString::fromStdString(TorusModel())));
+  atp::PropertiesPanel* panel = viewer->Properties();
+  Type(panel->CacheBudgetMiB(), "64");
+  EXPECT_EQ(viewer->Mapper()->GetCacheBudget(), vtkTypeInt64(64) << 20);
+  Click(panel->Prefetching());
+  EXPECT_FALSE(viewer->Mapper()->GetPrefetching());
+  Click(panel->BackfaceCulling());
+  EXPECT_TRUE(viewer->Mapper()->GetBackfaceCulling());
+
+  vtkActor* actor = viewer->Renderer()->GetActors()->GetLastActor();
+  ASSERT_NE(actor, nullptr);
+  auto* representation = panel->findChild<QComboBox*>("representation");
+  ASSERT_NE(representation, nullptr);
+  representation->setFocus();
+  QTest::keyClick(representation, Qt::Key_Up); // Surface -> Wireframe
+  EXPECT_EQ(actor->GetProperty()->GetRepresentation(), VTK_WIREFRAME);
+  for (const char* name : { "ambient", "diffuse", "specular" })
+  {
+    Type(panel->findChild<QDoubleSpinBox*>(name), "0.25");
+  }
+  Type(panel->findChild<QDoubleSpinBox*>("specularPower"), "40");
+  EXPECT_EQ(actor->GetProperty()->GetAmbient(), 0.25);
+  EXPECT_EQ(actor->GetProperty()->GetDiffuse(), 0.25);
+  EXPECT_EQ(actor->GetProperty()->GetSpecular(), 0.25);
+  EXPECT_EQ(actor->GetProperty()->GetSpecularPower(), 40);
+
+  Click(panel->LightKit());
+  EXPECT_GE(viewer->Renderer()->GetLights()->GetNumberOfItems(), 4) << "a light kit has 4 lights";
+  Click(panel->LightKit());
+  viewer->Render(); // the renderer makes its headlight again
+  EXPECT_EQ(viewer->Renderer()->GetLights()->GetNumberOfItems(), 1);
+
+  // Drawn with all of it, the view still converges and draws triangles.
+  ASSERT_TRUE(viewer.WaitUntilConverged());
+  EXPECT_GT(viewer->Mapper()->GetStatistics().Triangles, 0u);
 }
 
 TEST(Viewer, ACorruptModelShowsAnErrorAndTheViewerKeepsWorking)
