@@ -15,8 +15,6 @@
 #include <QFileInfo>
 #include <QProgressDialog>
 
-#include <string>
-
 namespace atp
 {
 namespace

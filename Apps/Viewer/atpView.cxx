@@ -3,7 +3,6 @@
 #include "atpModelBuild.h"
 #include "atpPropertiesPanel.h"
 #include "atpViewerWindow.h"
-#include "vtkATPMapper.h"
 
 #include "QVTKOpenGLNativeWidget.h"
 
@@ -15,7 +14,6 @@
 #include <QTimer>
 
 #include <cstdio>
-#include <iostream>
 
 namespace
 {

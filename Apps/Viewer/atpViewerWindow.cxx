@@ -33,7 +33,7 @@
 #include <QStatusBar>
 #include <QToolBar>
 
-#include <stdexcept>
+#include <exception>
 
 namespace atp
 {
