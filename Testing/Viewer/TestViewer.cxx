@@ -202,6 +202,13 @@ TEST(Viewer, PropertiesAndTrackballMatchTheBaseline)
   double error = 0;
   EXPECT_TRUE(MatchesBaseline(screenshot, "ATPViewerTrackball", BaselineThreshold, error))
     << "image error " << error;
+
+  // The comparison sees the difference one property makes.
+  Click(viewer->Properties()->PatchColoring());
+  ASSERT_TRUE(viewer.WaitUntilConverged());
+  ASSERT_TRUE(viewer->SaveScreenshot(QString::fromStdString(screenshot)));
+  EXPECT_FALSE(MatchesBaseline(screenshot, "ATPViewerTrackball", BaselineThreshold, error))
+    << "without patch colors: image error " << error;
   ::unlink(screenshot.c_str());
 }
 
