@@ -172,6 +172,12 @@ TEST(Viewer, OpensAModelAndShowsItsStatistics)
   EXPECT_TRUE(panel->Label("memory")->text().endsWith("MiB"));
   EXPECT_EQ(panel->Label("converged")->text(), "yes");
   EXPECT_EQ(ErrorBox(viewer.Window.get()), nullptr);
+
+  // A screenshot that cannot be written is an error box, not a crash.
+  EXPECT_FALSE(viewer->SaveScreenshot("/nonexistent/directory/shot.png"));
+  ASSERT_NE(ErrorBox(viewer.Window.get()), nullptr);
+  EXPECT_TRUE(ErrorBox(viewer.Window.get())->text().contains("/nonexistent/directory/shot.png"))
+    << ErrorBox(viewer.Window.get())->text().toStdString();
 }
 
 TEST(Viewer, PropertiesAndTrackballMatchTheBaseline)
