@@ -125,27 +125,31 @@ void ViewerWindow::CreateActions()
   QMenu* camera = menuBar()->addMenu(tr("&Camera"));
   QToolBar* tools = addToolBar(tr("Main"));
   tools->setObjectName("mainToolBar");
-  const auto add = [this, tools](QMenu* menu, const QString& text, QKeySequence keys, auto slot) {
+  const auto add = [this, tools](QMenu* menu, const QString& name, const QString& text,
+                     QKeySequence keys, auto slot) {
     QAction* action = menu->addAction(text);
+    action->setObjectName(name);
     action->setShortcut(keys);
     connect(action, &QAction::triggered, this, slot);
     tools->addAction(action);
     return action;
   };
-  add(file, tr("&Open Model..."), QKeySequence::Open, &ViewerWindow::ChooseModel);
-  BuildAction = add(file, tr("&Build Model..."), QKeySequence(tr("Ctrl+B")),
+  add(file, "openModel", tr("&Open Model..."), QKeySequence::Open, &ViewerWindow::ChooseModel);
+  BuildAction = add(file, "buildModel", tr("&Build Model..."), QKeySequence(tr("Ctrl+B")),
     &ViewerWindow::ChooseInput);
-  add(file, tr("Save &Screenshot..."), QKeySequence(tr("Ctrl+S")), &ViewerWindow::ChooseScreenshot);
+  add(file, "saveScreenshot", tr("Save &Screenshot..."), QKeySequence(tr("Ctrl+S")),
+    &ViewerWindow::ChooseScreenshot);
   file->addSeparator();
   file->addAction(tr("&Quit"), this, &QWidget::close, QKeySequence::Quit);
   tools->addSeparator();
-  add(camera, tr("&Reset Camera"), QKeySequence(tr("R")), &ViewerWindow::ResetCamera);
+  add(camera, "resetCamera", tr("&Reset Camera"), QKeySequence(tr("R")), &ViewerWindow::ResetCamera);
   RecordAction = camera->addAction(tr("Re&cord Camera Path"));
+  RecordAction->setObjectName("recordCameraPath");
   RecordAction->setCheckable(true);
   RecordAction->setShortcut(QKeySequence(tr("Ctrl+R")));
   connect(RecordAction, &QAction::toggled, this, &ViewerWindow::ToggleRecording);
   tools->addAction(RecordAction);
-  add(camera, tr("&Play Camera Path..."), QKeySequence(tr("Ctrl+P")),
+  add(camera, "playCameraPath", tr("&Play Camera Path..."), QKeySequence(tr("Ctrl+P")),
     &ViewerWindow::ChooseCameraPath);
 }
 

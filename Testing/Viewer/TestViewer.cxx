@@ -23,10 +23,12 @@
 #include "vtkRenderer.h"
 #include "vtkXMLImageDataWriter.h"
 
+#include <QAction>
 #include <QApplication>
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
+#include <QFileDialog>
 #include <QFile>
 #include <QLabel>
 #include <QMessageBox>
@@ -35,11 +37,14 @@
 #include <QPushButton>
 #include <QSurfaceFormat>
 #include <QTest>
+#include <QTimer>
+#include <QToolBar>
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
+#include <memory>
 #include <cmath>
 #include <fstream>
 #include <unistd.h>
@@ -112,6 +117,40 @@ void WheelForward(QWidget* view)
   QWheelEvent wheel(at, view->mapToGlobal(at), QPoint(), QPoint(0, 120), Qt::NoButton,
     Qt::NoModifier, Qt::NoScrollPhase, false);
   QApplication::sendEvent(view, &wheel);
+}
+
+/// Clicks the main toolbar's button for the action named `name`.
+void ClickToolButton(atp::ViewerWindow* window, const QString& name)
+{
+  auto* action = window->findChild<QAction*>(name);
+  auto* toolbar = window->findChild<QToolBar*>("mainToolBar");
+  ASSERT_TRUE(action && toolbar) << name.toStdString();
+  QTest::mouseClick(toolbar->widgetForAction(action), Qt::LeftButton);
+}
+
+/// Answers the next file dialogs, in turn, with `paths` (they open modally, so this waits for
+/// each from the dialog's own event loop).
+void AnswerFileDialogs(const QStringList& paths)
+{
+  auto* poll = new QTimer;
+  auto answered = std::make_shared<QPointer<QFileDialog>>();
+  auto next = std::make_shared<int>(0);
+  QObject::connect(poll, &QTimer::timeout, [=] {
+    auto* dialog = qobject_cast<QFileDialog*>(QApplication::activeModalWidget());
+    if (!dialog || dialog == *answered)
+    {
+      return;
+    }
+    *answered = dialog;
+    dialog->selectFile(paths[(*next)++]);
+    static_cast<QDialog*>(dialog)->accept(); // what its Save or Open button does
+    if (*next == paths.size())
+    {
+      poll->stop();
+      poll->deleteLater();
+    }
+  });
+  poll->start(10);
 }
 
 /// Clicks a check box where its indicator is, as a person would.
@@ -204,7 +243,8 @@ TEST(Viewer, PropertiesAndTrackballMatchTheBaseline)
     << "a coarser tolerance must draw fewer triangles";
 
   const std::string screenshot = TempPath("viewer.png");
-  ASSERT_TRUE(viewer->SaveScreenshot(QString::fromStdString(screenshot)));
+  AnswerFileDialogs({ QString::fromStdString(screenshot) });
+  ClickToolButton(viewer.Window.get(), "saveScreenshot");
   double error = 0;
   EXPECT_TRUE(MatchesBaseline(screenshot, "ATPViewerTrackball", BaselineThreshold, error))
     << "image error " << error;
@@ -302,7 +342,8 @@ TEST(Viewer, ARecordedCameraPathPlaysBackToTheRecordedCamera)
   ASSERT_TRUE(viewer->OpenModel(QString::fromStdString(TorusModel())));
   ASSERT_TRUE(viewer.WaitUntilConverged());
 
-  viewer->StartRecording();
+  ClickToolButton(viewer.Window.get(), "recordCameraPath");
+  ASSERT_TRUE(viewer->Recording());
   QWidget* view = viewer->View();
   Drag(view, Qt::LeftButton, QPoint(200, 150), QPoint(260, 100), 5, 20);
   QTest::qWait(100); // a pause, kept in the path
@@ -310,7 +351,9 @@ TEST(Viewer, ARecordedCameraPathPlaysBackToTheRecordedCamera)
   Drag(view, Qt::LeftButton, QPoint(200, 150), QPoint(150, 150), 5, 20);
   const auto recorded = CameraOf(viewer->Renderer());
   const std::string path = TempPath("flight.camera");
-  ASSERT_TRUE(viewer->StopRecording(QString::fromStdString(path)));
+  AnswerFileDialogs({ QString::fromStdString(path) }); // where to save it
+  ClickToolButton(viewer.Window.get(), "recordCameraPath");
+  ASSERT_FALSE(viewer->Recording());
   const atp::CameraPath flight = atp::CameraPath::Load(path);
   EXPECT_GT(flight.Keyframes().size(), 8u);
   EXPECT_GT(flight.Duration(), 0.2);
@@ -318,7 +361,8 @@ TEST(Viewer, ARecordedCameraPathPlaysBackToTheRecordedCamera)
   // Elsewhere, then back along the path.
   Drag(view, Qt::LeftButton, QPoint(100, 100), QPoint(300, 250), 5);
   ASSERT_GT(Distance(recorded, CameraOf(viewer->Renderer())), 0.1);
-  ASSERT_TRUE(viewer->PlayCameraPath(QString::fromStdString(path)));
+  AnswerFileDialogs({ QString::fromStdString(path) }); // which path to play
+  ClickToolButton(viewer.Window.get(), "playCameraPath");
   EXPECT_TRUE(viewer->Playing());
   ASSERT_TRUE(QTest::qWaitFor([&] { return !viewer->Playing(); }, 20000));
   EXPECT_LT(Distance(recorded, CameraOf(viewer->Renderer())), 1e-9);
@@ -338,7 +382,8 @@ TEST(Viewer, BuildsAModelFromAMeshBehindAProgressDialog)
 {
   Viewer viewer;
   const std::string model = TempPath("built.atp");
-  viewer->BuildModel(ATP_DATA_DIR "/bumpy-torus.ply", QString::fromStdString(model));
+  AnswerFileDialogs({ ATP_DATA_DIR "/bumpy-torus.ply", QString::fromStdString(model) });
+  ClickToolButton(viewer.Window.get(), "buildModel"); // the mesh, then where its model goes
   QPointer<QProgressDialog> progress = viewer->findChild<QProgressDialog*>("buildProgress");
   ASSERT_NE(progress, nullptr);
   EXPECT_TRUE(progress->isVisible());
