@@ -18,11 +18,14 @@
 #include "vtkCommand.h"
 #include "vtkNew.h"
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
+#include <unistd.h>
 
 namespace
 {
@@ -265,6 +268,25 @@ int Generate(int argc, char** argv)
   return 0;
 }
 
+/// atp view: runs atp-view (the Qt viewer, a program of its own so that atp needs no display
+/// and no Qt), from the directory atp itself is in.
+int View(int argc, char** argv)
+{
+  char self[4096];
+  const ssize_t length = ::readlink("/proc/self/exe", self, sizeof self - 1);
+  if (length <= 0)
+  {
+    throw std::runtime_error("cannot find the directory of atp");
+  }
+  std::string viewer(self, std::size_t(length));
+  viewer = viewer.substr(0, viewer.rfind('/') + 1) + "atp-view";
+  std::vector<char*> arguments{ const_cast<char*>("atp-view") };
+  arguments.insert(arguments.end(), argv + 2, argv + argc);
+  arguments.push_back(nullptr);
+  ::execv(viewer.c_str(), arguments.data());
+  throw std::runtime_error("cannot run " + viewer + ": " + std::strerror(errno));
+}
+
 void PrintHelp()
 {
   std::cout << "usage: atp COMMAND [arguments] [options]\n\n"
@@ -276,6 +298,7 @@ void PrintHelp()
                "  calibrate  find and store a model's error scale from rendered views\n"
                "  extract    write a level of detail (a camera's cut or a level) as PLY, VTP or STL\n"
                "  bench      time the standard flythrough of a model: CSV, summary, plot, speed-up\n"
+               "  view       show a model in the desktop viewer (atp-view)\n"
                "  generate   write a large test surface as binary PLY\n\n"
                "Run 'atp COMMAND --help' for the options of a command.\n";
 }
@@ -320,6 +343,10 @@ int main(int argc, char** argv)
     if (command == "bench")
     {
       return atp::BenchCommand(Rest(argc, argv));
+    }
+    if (command == "view")
+    {
+      return View(argc, argv);
     }
     std::fprintf(stderr, "atp: unknown command '%s' (see atp --help)\n", command.c_str());
     return 2;

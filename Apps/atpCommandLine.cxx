@@ -43,9 +43,9 @@ void CommandLine::AddFlag(const std::string& longName, const std::string& help)
   Options.push_back({ longName, "", "", help, "", true });
 }
 
-void CommandLine::AddPositional(const std::string& name, const std::string& help)
+void CommandLine::AddPositional(const std::string& name, const std::string& help, bool optional)
 {
-  PositionalHelp.emplace_back(name, help);
+  PositionalHelp.push_back({ name, help, optional });
 }
 
 const CommandLine::Option* CommandLine::FindOption(const std::string& name) const
@@ -91,13 +91,23 @@ bool CommandLine::Parse(const std::vector<std::string>& arguments)
     }
     Positionals.push_back(a);
   }
-  if (Positionals.size() != PositionalHelp.size())
+  std::size_t required = 0;
+  for (const auto& p : PositionalHelp)
+  {
+    required += p.Optional ? 0 : 1;
+  }
+  if (Positionals.size() < required || Positionals.size() > PositionalHelp.size())
   {
     std::ostringstream s;
-    s << "expected " << PositionalHelp.size() << " argument(s)";
+    s << "expected ";
+    if (required != PositionalHelp.size())
+    {
+      s << "from " << required << " to ";
+    }
+    s << PositionalHelp.size() << " argument(s)";
     for (const auto& p : PositionalHelp)
     {
-      s << " " << p.first;
+      s << " " << (p.Optional ? "[" + p.Name + "]" : p.Name);
     }
     s << ", got " << Positionals.size() << " (see atp " << Command << " --help)";
     throw UsageError(s.str());
@@ -111,7 +121,7 @@ std::string CommandLine::Help() const
   s << "usage: atp " << Command;
   for (const auto& p : PositionalHelp)
   {
-    s << " " << p.first;
+    s << " " << (p.Optional ? "[" + p.Name + "]" : p.Name);
   }
   s << " [options]\n\n" << Summary << "\n";
   if (!PositionalHelp.empty())
@@ -119,7 +129,7 @@ std::string CommandLine::Help() const
     s << "\narguments:\n";
     for (const auto& p : PositionalHelp)
     {
-      s << "  " << p.first << "\n      " << p.second << "\n";
+      s << "  " << p.Name << "\n      " << p.Help << "\n";
     }
   }
   s << "\noptions:\n";

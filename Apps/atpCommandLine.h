@@ -34,7 +34,8 @@ public:
   void AddOption(const std::string& longName, const std::string& shortName,
     const std::string& valueName, const std::string& help, const std::string& fallback = "");
   void AddFlag(const std::string& longName, const std::string& help);
-  void AddPositional(const std::string& name, const std::string& help);
+  /// A positional argument; optional ones come after the required ones.
+  void AddPositional(const std::string& name, const std::string& help, bool optional = false);
 
   /// Parses arguments (after the subcommand). Returns false when --help was asked (the help
   /// is printed). Throws UsageError.
@@ -52,6 +53,7 @@ public:
   /// WIDTHxHEIGHT, each from 16 to 8192; throws UsageError otherwise.
   void GetSize(const std::string& longName, int& width, int& height) const;
   const std::string& Positional(std::size_t i) const { return Positionals.at(i); }
+  std::size_t PositionalCount() const { return Positionals.size(); }
 
 private:
   struct Option
@@ -63,7 +65,12 @@ private:
 
   std::string Command, Summary;
   std::vector<Option> Options;
-  std::vector<std::pair<std::string, std::string>> PositionalHelp;
+  struct PositionalArgument
+  {
+    std::string Name, Help;
+    bool Optional = false;
+  };
+  std::vector<PositionalArgument> PositionalHelp;
   std::vector<std::string> Positionals;
   std::map<std::string, std::string> Values;
 };

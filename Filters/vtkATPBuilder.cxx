@@ -105,7 +105,8 @@ int vtkATPBuilder::Build()
     vtkErrorMacro(<< this->ErrorMessage);
     return 0;
   }
-  this->ErrorMessage.clear();
+  // RequestData clears this; when an algorithm upstream fails, the executive never calls it.
+  this->ErrorMessage = "the input pipeline failed (see the errors before this one)";
   this->Modified(); // every call builds, like vtkWriter::Write
   this->Update();
   return this->ErrorMessage.empty() ? 1 : 0;

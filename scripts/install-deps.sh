@@ -7,6 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config libgtest-dev
   time                   # /usr/bin/time: peak memory in the benchmarks
   libvtk9-dev            # VTK 9.1: modules, pipeline, OpenGL2 rendering, vtkTesting
+  libvtk9-qt-dev qtbase5-dev libqt5opengl5-dev   # atp-view: VTK's Qt widget, Qt 5 Widgets/Test
   libcgal-dev            # minimum enclosing balls (Min_sphere_of_spheres_d)
   libtet1.5-dev          # TetGen: conformity checks in tests
   libmeshoptimizer-dev   # vertex-cache order, index/vertex codecs

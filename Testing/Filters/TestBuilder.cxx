@@ -12,6 +12,8 @@
 #include "vtkNew.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkExecutive.h"
+#include "vtkXMLPolyDataReader.h"
 #include "vtkXMLPolyDataWriter.h"
 
 #include <gtest/gtest.h>
@@ -166,6 +168,19 @@ TEST(Builder, ReportsErrorsWithoutThrowing)
   empty->SetFileName(model.c_str());
   EXPECT_EQ(empty->Build(), 0);
   EXPECT_NE(std::string(empty->GetErrorMessage()).find("empty"), std::string::npos);
+
+  // A reader upstream that fails: the executive never asks the builder for data.
+  vtkNew<vtkXMLPolyDataReader> missing;
+  missing->SetFileName("/nonexistent/mesh.vtp");
+  missing->AddObserver(vtkCommand::ErrorEvent, quiet);
+  missing->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, quiet);
+  vtkNew<vtkATPBuilder> downstream;
+  downstream->AddObserver(vtkCommand::ErrorEvent, quiet);
+  downstream->SetInputConnection(missing->GetOutputPort());
+  downstream->SetFileName(model.c_str());
+  EXPECT_EQ(downstream->Build(), 0);
+  EXPECT_FALSE(Exists(model));
+  EXPECT_NE(std::string(downstream->GetErrorMessage()).find("input pipeline failed"), std::string::npos);
 }
 
 TEST(Builder, IsoValueIsForVolumesOnly)

@@ -71,16 +71,36 @@ double ImageError(vtkImageData* a, vtkImageData* b)
   return difference->GetThresholdedError();
 }
 
-bool MatchesBaseline(vtkRenderWindow* window, const std::string& name, double threshold, double& error)
+namespace
 {
-  vtkNew<vtkTesting> testing;
+
+/// vtkTesting set up to compare with Testing/Data/Baseline/<name>.png, leaving failures in /tmp.
+vtkSmartPointer<vtkTesting> BaselineTesting(const std::string& name)
+{
+  auto testing = vtkSmartPointer<vtkTesting>::New();
   testing->AddArgument("-V");
   const std::string baseline = std::string(ATP_TEST_DATA_DIR) + "/Baseline/" + name + ".png";
   testing->AddArgument(baseline.c_str());
   testing->AddArgument("-T");
   testing->AddArgument("/tmp");
+  return testing;
+}
+
+}
+
+bool MatchesBaseline(vtkRenderWindow* window, const std::string& name, double threshold, double& error)
+{
+  vtkSmartPointer<vtkTesting> testing = BaselineTesting(name);
   testing->SetRenderWindow(window);
   const int result = testing->RegressionTest(threshold);
+  error = testing->GetImageDifference();
+  return result == vtkTesting::PASSED;
+}
+
+bool MatchesBaseline(const std::string& png, const std::string& name, double threshold, double& error)
+{
+  vtkSmartPointer<vtkTesting> testing = BaselineTesting(name);
+  const int result = testing->RegressionTest(png, threshold);
   error = testing->GetImageDifference();
   return result == vtkTesting::PASSED;
 }

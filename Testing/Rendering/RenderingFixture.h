@@ -36,6 +36,8 @@ double ImageError(vtkImageData* a, vtkImageData* b);
 /// vtkTesting's error in `error`. A failed or missing baseline leaves the picture in /tmp
 /// (<name>.png), to inspect or to become the baseline.
 bool MatchesBaseline(vtkRenderWindow* window, const std::string& name, double threshold, double& error);
+/// The same test for a picture saved as PNG (a screenshot an application wrote).
+bool MatchesBaseline(const std::string& png, const std::string& name, double threshold, double& error);
 
 } // namespace test
 } // namespace atp

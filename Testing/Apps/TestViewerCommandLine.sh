@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# atp-view scripted from the command line (needs a display: xvfb-run -a ctest): `atp view`
+# runs it, a screenshot of the converged view, a camera path recorded and played back, and one
+# clear line plus a non-zero exit code for a model it cannot open.
+#   TestViewerCommandLine.sh ATP_BINARY DATA_DIR
+set -u
+atp=$1
+data=$2
+source "$(dirname "$0")/expect.sh"
+
+# is_png FILE: a PNG image (its signature) of some size.
+is_png() {
+  if [ "$(head -c 8 "$1" 2>/dev/null | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] &&
+    [ "$(stat -c %s "$1")" -gt 1000 ]; then
+    passed=$((passed + 1))
+  else
+    fail "$1 is not a PNG screenshot"
+  fi
+}
+
+expect 0 "usage: atp view \[MODEL\]" -- "$atp" view --help
+expect 2 "unknown option --bogus" -- "$atp" view --bogus
+expect 2 "expected from 0 to 1 argument" -- "$atp" view a.atp b.atp
+# Mistakes in the command line are reported before Qt starts: no display needed.
+expect 2 "a volume needs --iso VALUE" -- env -u DISPLAY "$atp" view brain.nii.gz
+expect 2 "screenshot needs a MODEL" -- env -u DISPLAY "$atp" view --screenshot x.png
+expect 2 "tolerance must be a number" -- env -u DISPLAY "$atp" view a.atp --tolerance fine
+
+"$atp" build "$data/bumpy-torus.ply" -o "$work/torus.atp" --quiet >/dev/null || fail "atp build"
+expect 0 "" -- "$atp" view "$work/torus.atp" --size 320x240 --tolerance 4 --record "$work/still.camera" \
+  --screenshot "$work/still.png"
+is_png "$work/still.png"
+grep -qE '^0 ' "$work/still.camera" && passed=$((passed + 1)) || fail "no keyframe recorded at time 0"
+
+# Half a turn around the torus's axis (z), played back, then the screenshot.
+cat >"$work/turn.camera" <<'PATH'
+# time  position  focal point  view up  view angle
+0    0 0 8   0 0 0   0 1 0   30
+0.3  0 -8 0.1  0 0 0   0 0 1   30
+PATH
+expect 0 "" -- "$atp" view "$work/torus.atp" --size 320x240 --tolerance 4 --play "$work/turn.camera" \
+  --screenshot "$work/turn.png"
+is_png "$work/turn.png"
+cmp -s "$work/still.png" "$work/turn.png" && fail "the played path did not move the camera" || passed=$((passed + 1))
+
+# A mesh is built first (here into --output), then shown.
+expect 0 "" -- "$atp" view "$data/bumpy-torus.ply" -o "$work/built.atp" --size 320x240 --tolerance 4 \
+  --screenshot "$work/built.png"
+is_png "$work/built.png"
+[ -s "$work/built.atp" ] && passed=$((passed + 1)) || fail "no model built from the mesh"
+
+# Mistakes a user can make: one line naming the file, exit code 1, no screenshot.
+head -c 3000 "$work/torus.atp" >"$work/truncated.atp"
+expect 1 "error: .*truncated.atp" -- "$atp" view "$work/truncated.atp" --screenshot "$work/bad.png"
+echo "1 2 3" >"$work/bad.camera"
+expect 1 "error: .*bad.camera:1:" -- "$atp" view "$work/torus.atp" --play "$work/bad.camera" --screenshot "$work/bad.png"
+[ ! -e "$work/bad.png" ] && passed=$((passed + 1)) || fail "a failed session wrote a screenshot"
+echo "$passed passed, $failures failed"
+[ "$failures" -eq 0 ]
