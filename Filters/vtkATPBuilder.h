@@ -28,6 +28,7 @@ class vtkPolyData;
 
 namespace atp
 {
+class PatchJobRunner;
 struct ConstructionStats;
 struct PartitionStats;
 struct InputStats;
@@ -67,6 +68,12 @@ public:
   vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
   vtkGetMacro(NumberOfThreads, int);
   ///@}
+
+  /// Where the leaf and diamond jobs run (not owned; must outlive Build()): nullptr (default)
+  /// runs them on NumberOfThreads threads, `atp build --mpi` on MPI worker processes. The model
+  /// is byte-identical either way.
+  void SetJobRunner(atp::PatchJobRunner* runner) { this->JobRunner = runner; }
+  atp::PatchJobRunner* GetJobRunner() const { return this->JobRunner; }
 
   ///@{
   /// Most triangles a leaf tetrahedron holds before it splits (default 4000).
@@ -123,6 +130,7 @@ protected:
   int PatchBudget = 2000;
   int NumberOfThreads = 0;
   int BucketMemoryMiB = 256;
+  atp::PatchJobRunner* JobRunner = nullptr;
   vtkTypeUInt64 ExpectedTriangles = 0;
 
 private:
