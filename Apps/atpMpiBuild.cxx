@@ -28,6 +28,8 @@ enum Tag : int
   TagStats,       ///< worker -> coordinator: jobs done and peak memory
 };
 
+/// Jobs a worker holds: the one it works on and the next.
+constexpr std::size_t JobsPerWorker = 2;
 /// Jobs handed out beyond those stored, per worker: enough to keep workers busy when one job is
 /// slow, few enough to keep the coordinator's reorder buffer small.
 constexpr std::size_t JobsAheadPerWorker = 4;
@@ -43,14 +45,20 @@ void Check(int code, const char* what)
   }
 }
 
-void Send(MPI_Comm comm, int rank, Tag tag, const std::vector<std::uint8_t>& bytes)
+/// MPI counts are ints.
+int MessageSize(const std::vector<std::uint8_t>& bytes)
 {
   if (bytes.size() > std::size_t(INT_MAX))
   {
-    throw std::runtime_error("a job of " + std::to_string(bytes.size() >> 20) +
-      " MiB is too large for one MPI message (2 GiB at most): lower --leaf-capacity");
+    throw std::runtime_error("a message of " + std::to_string(bytes.size() >> 20) +
+      " MiB is too large for MPI (2 GiB at most): lower --leaf-capacity");
   }
-  Check(MPI_Send(bytes.data(), int(bytes.size()), MPI_BYTE, rank, tag, comm), "send");
+  return int(bytes.size());
+}
+
+void Send(MPI_Comm comm, int rank, Tag tag, const std::vector<std::uint8_t>& bytes)
+{
+  Check(MPI_Send(bytes.data(), MessageSize(bytes), MPI_BYTE, rank, tag, comm), "send");
 }
 
 /// Waits for a message without spinning: an idle rank sleeps between polls, so on a machine
@@ -169,8 +177,8 @@ MpiJobRunner::MpiJobRunner(MPI_Comm comm)
     throw std::runtime_error("--mpi needs at least 2 processes: mpirun -np N atp build ... --mpi, "
                              "rank 0 coordinates and ranks 1 to N-1 build");
   }
-  Assigned.assign(std::size_t(size - 1), -1);
-  Stats.resize(Assigned.size());
+  Queued.resize(std::size_t(size - 1));
+  Stats.resize(Queued.size());
 }
 
 MpiJobRunner::~MpiJobRunner()
@@ -196,22 +204,22 @@ void MpiJobRunner::Begin(const PatchJobContext& context)
 
 void MpiJobRunner::Run(std::size_t count, const LoadJob& load, const StoreResult& store)
 {
-  const std::size_t ahead = JobsAheadPerWorker * Assigned.size();
+  const std::size_t ahead = JobsAheadPerWorker * Queued.size();
   std::vector<std::uint8_t> buffer;
   std::size_t next = 0, stored = 0;
   while (stored < count)
   {
+    ReclaimSends(false);
     // Bottom-up and in diamond order, so consecutive jobs are geometric neighbours; every
-    // free worker gets the next one.
-    for (std::size_t w = 0; w < Assigned.size() && next < count && next < stored + ahead; ++w)
+    // worker gets one before any gets a second.
+    for (std::size_t held = 1; held <= JobsPerWorker; ++held)
     {
-      if (Assigned[w] < 0)
+      for (std::size_t w = 0; w < Queued.size() && next < count && next < stored + ahead; ++w)
       {
-        PatchJob job;
-        load(next, job);
-        EncodeJob(job, buffer);
-        Send(Comm, int(w) + 1, TagJob, buffer);
-        Assigned[w] = std::int64_t(next++);
+        if (Queued[w].size() < held)
+        {
+          Dispatch(next++, w, load);
+        }
       }
     }
     Collect(buffer);
@@ -224,18 +232,42 @@ void MpiJobRunner::Run(std::size_t count, const LoadJob& load, const StoreResult
   }
 }
 
+void MpiJobRunner::Dispatch(std::size_t index, std::size_t worker, const LoadJob& load)
+{
+  PatchJob job;
+  load(index, job);
+  PendingSend& send = Sends.emplace_back();
+  EncodeJob(job, send.Bytes);
+  Check(MPI_Isend(send.Bytes.data(), MessageSize(send.Bytes), MPI_BYTE, int(worker) + 1, TagJob,
+          Comm, &send.Request),
+    "send");
+  Queued[worker].push_back(index);
+}
+
+void MpiJobRunner::ReclaimSends(bool all)
+{
+  for (auto s = Sends.begin(); s != Sends.end();)
+  {
+    int done = 0;
+    Check(all ? MPI_Wait(&s->Request, MPI_STATUS_IGNORE) : MPI_Test(&s->Request, &done,
+                                                              MPI_STATUS_IGNORE),
+      "send");
+    s = (all || done) ? Sends.erase(s) : std::next(s);
+  }
+}
+
 void MpiJobRunner::Collect(std::vector<std::uint8_t>& buffer)
 {
   const MPI_Status status = WaitForMessage(Comm, MPI_ANY_SOURCE);
   Receive(Comm, status, buffer);
   const std::size_t w = std::size_t(status.MPI_SOURCE - 1);
-  if (status.MPI_SOURCE < 1 || w >= Assigned.size() || Assigned[w] < 0)
+  if (status.MPI_SOURCE < 1 || w >= Queued.size() || Queued[w].empty())
   {
     throw std::runtime_error(
       "unexpected message from MPI rank " + std::to_string(status.MPI_SOURCE));
   }
-  const std::size_t job = std::size_t(Assigned[w]);
-  Assigned[w] = -1;
+  const std::size_t job = Queued[w].front();
+  Queued[w].pop_front();
   if (status.MPI_TAG == TagFailure)
   {
     throw std::runtime_error("worker " + std::to_string(status.MPI_SOURCE) + " failed on job " +
@@ -253,19 +285,21 @@ std::vector<MpiJobRunner::WorkerStats> MpiJobRunner::Finish()
   }
   Finished = true;
   std::vector<std::uint8_t> buffer;
-  for (std::size_t w = 0; w < Assigned.size(); ++w)
+  for (std::size_t w = 0; w < Queued.size(); ++w)
   {
     // A failed build leaves jobs out: their results are received and dropped.
-    while (Assigned[w] >= 0)
+    for (; !Queued[w].empty(); Queued[w].pop_front())
     {
-      const MPI_Status status = WaitForMessage(Comm, int(w) + 1);
-      Receive(Comm, status, buffer);
-      Assigned[w] = -1;
+      Receive(Comm, WaitForMessage(Comm, int(w) + 1), buffer);
     }
+  }
+  ReclaimSends(true);
+  Arrived.clear();
+  for (std::size_t w = 0; w < Queued.size(); ++w)
+  {
     Send(Comm, int(w) + 1, TagStop, {});
   }
-  Arrived.clear();
-  for (std::size_t w = 0; w < Assigned.size(); ++w)
+  for (std::size_t w = 0; w < Queued.size(); ++w)
   {
     std::uint64_t peak = 0;
     Check(MPI_Recv(&peak, 1, MPI_UINT64_T, int(w) + 1, TagStats, Comm, MPI_STATUS_IGNORE),
@@ -280,6 +314,9 @@ int RunMpiWorker(MPI_Comm comm)
   const std::optional<InjectedFault> fault = InjectedFault::FromEnvironment();
   std::optional<PatchJobContext> context;
   std::vector<std::uint8_t> buffer;
+  // The last result goes out while the next job is made.
+  std::vector<std::uint8_t> result;
+  MPI_Request sending = MPI_REQUEST_NULL;
   std::uint64_t jobs = 0;
   for (;;)
   {
@@ -287,6 +324,7 @@ int RunMpiWorker(MPI_Comm comm)
     Receive(comm, status, buffer);
     if (status.MPI_TAG == TagStop)
     {
+      Check(MPI_Wait(&sending, MPI_STATUS_IGNORE), "send");
       const std::uint64_t peak = PeakResidentBytes();
       Check(MPI_Send(&peak, 1, MPI_UINT64_T, 0, TagStats, comm), "send");
       return 0;
@@ -314,12 +352,15 @@ int RunMpiWorker(MPI_Comm comm)
       PatchJob job;
       DecodeJob(buffer.data(), buffer.size(), job);
       buffer.clear();
-      const PatchJobResult result = MakePatches(*context, std::move(job));
-      EncodeResult(result, buffer);
-      Send(comm, 0, TagResult, buffer);
+      const PatchJobResult made = MakePatches(*context, std::move(job));
+      Check(MPI_Wait(&sending, MPI_STATUS_IGNORE), "send");
+      EncodeResult(made, result);
+      Check(MPI_Isend(result.data(), MessageSize(result), MPI_BYTE, 0, TagResult, comm, &sending),
+        "send");
     }
     catch (const std::exception& e)
     {
+      Check(MPI_Wait(&sending, MPI_STATUS_IGNORE), "send");
       const std::string message = e.what();
       Send(comm, 0, TagFailure, std::vector<std::uint8_t>(message.begin(), message.end()));
     }

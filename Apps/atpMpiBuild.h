@@ -11,6 +11,8 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <deque>
+#include <list>
 #include <map>
 #include <string>
 #include <vector>
@@ -34,8 +36,10 @@ public:
 /// Whether the arguments of `atp build` ask for an MPI build (before MPI is started).
 bool WantsMpi(int argc, char** argv);
 
-/// The coordinator's runner (rank 0 of `comm`). Stops every worker when destroyed, after
-/// waiting for the jobs they hold, so a failed build still ends every process.
+/// The coordinator's runner (rank 0 of `comm`). Each worker holds the job it works on and the
+/// next one, so it never waits for the coordinator's answer (a network round trip on a
+/// cluster). Stops every worker when destroyed, after waiting for the jobs they hold, so a
+/// failed build still ends every process.
 class MpiJobRunner : public PatchJobRunner
 {
 public:
@@ -54,16 +58,27 @@ public:
   /// Waits for outstanding jobs, stops every worker and returns their figures (rank 1 first).
   std::vector<WorkerStats> Finish();
 
-  int Workers() const { return int(Assigned.size()); }
+  int Workers() const { return int(Queued.size()); }
 
 private:
-  /// Receives the next message from any busy worker: a result goes to the reorder buffer, a
+  /// Loads job `index` and sends it to `worker` without waiting for the transfer.
+  void Dispatch(std::size_t index, std::size_t worker, const LoadJob& load);
+  /// Receives the next message from any worker: a result goes to the reorder buffer, a
   /// failure throws.
   void Collect(std::vector<std::uint8_t>& buffer);
+  /// Frees the buffers of sends that are done; with `all`, waits for every send first.
+  void ReclaimSends(bool all);
+
+  struct PendingSend
+  {
+    MPI_Request Request = MPI_REQUEST_NULL;
+    std::vector<std::uint8_t> Bytes;
+  };
 
   MPI_Comm Comm;
-  /// Per worker: the index of the job it holds, or -1.
-  std::vector<std::int64_t> Assigned;
+  /// Per worker: the indices of the jobs it holds, oldest first (it answers in order).
+  std::vector<std::deque<std::size_t>> Queued;
+  std::list<PendingSend> Sends;
   std::vector<WorkerStats> Stats;
   /// The reorder buffer: results that arrived before an earlier job's, by job index.
   std::map<std::size_t, PatchJobResult> Arrived;
