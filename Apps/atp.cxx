@@ -152,14 +152,18 @@ int Build(int argc, char** argv, atp::MpiJobRunner* workers)
   if (workers)
   {
     std::string jobs;
-    std::uint64_t peak = 0;
+    std::uint64_t peak = 0, sent = 0, received = 0;
     for (const atp::MpiJobRunner::WorkerStats& w : workers->Finish())
     {
       jobs += (jobs.empty() ? "" : "/") + std::to_string(w.Jobs);
       peak = std::max(peak, w.PeakMemoryBytes);
+      sent += w.JobBytes;
+      received += w.ResultBytes;
     }
-    std::printf("mpi: %d workers, jobs per worker %s, peak memory per worker %.0f MiB (largest)\n",
-      workers->Workers(), jobs.c_str(), double(peak) / (1 << 20));
+    std::printf("mpi: %d workers, jobs per worker %s, %.0f MiB shipped to workers and %.0f MiB "
+                "back, peak memory per worker %.0f MiB (largest)\n",
+      workers->Workers(), jobs.c_str(), double(sent) / (1 << 20), double(received) / (1 << 20),
+      double(peak) / (1 << 20));
   }
   std::printf("done: %s: %s triangles, %llu nodes, %d levels, %.1f MiB, %.2f bytes/triangle, "
               "%s (%.2fs), %s triangles/s, peak memory %.0f MiB\n",

@@ -25,7 +25,7 @@ enum Tag : int
   TagStop,        ///< coordinator -> worker: no more jobs; answered by TagStats
   TagResult,      ///< worker -> coordinator: the job's patches
   TagFailure,     ///< worker -> coordinator: why the job failed
-  TagStats,       ///< worker -> coordinator: jobs done and peak memory
+  TagStats,       ///< worker -> coordinator: its peak memory
 };
 
 /// Jobs a worker holds: the one it works on and the next.
@@ -242,6 +242,7 @@ void MpiJobRunner::Dispatch(std::size_t index, std::size_t worker, const LoadJob
           Comm, &send.Request),
     "send");
   Queued[worker].push_back(index);
+  Stats[worker].JobBytes += send.Bytes.size();
 }
 
 void MpiJobRunner::ReclaimSends(bool all)
@@ -274,6 +275,7 @@ void MpiJobRunner::Collect(std::vector<std::uint8_t>& buffer)
       std::to_string(job) + ": " + std::string(buffer.begin(), buffer.end()));
   }
   ++Stats[w].Jobs;
+  Stats[w].ResultBytes += buffer.size();
   DecodeResult(buffer.data(), buffer.size(), Arrived[job]);
 }
 

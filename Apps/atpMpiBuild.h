@@ -53,6 +53,8 @@ public:
   struct WorkerStats
   {
     std::uint64_t Jobs = 0;
+    std::uint64_t JobBytes = 0;        ///< shipped to the worker (jobs with their triangles)
+    std::uint64_t ResultBytes = 0;     ///< shipped back
     std::uint64_t PeakMemoryBytes = 0; ///< the worker's peak resident memory
   };
   /// Waits for outstanding jobs, stops every worker and returns their figures (rank 1 first).

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Distributed construction figures: atp build on threads (1 and 2) and with --mpi and 1, 2, 3
 # workers (mpirun -np 2..4 on this machine), each model checked byte-identical to the threaded
-# one; wall time, construction (simplify) time, speed-up, coordinator and per-worker peak memory.
+# one; wall time, construction (simplify) time, speed-up, CPU time of all processes (what MPI
+# costs in work, whatever else runs on the machine), coordinator and per-worker peak memory.
 #   bench/mpi.sh brain|TRIANGLES|MESH.ply [SCRATCH_DIR]
 # Inputs as in bench/build.sh. The load average is printed before every run: on a shared
 # machine, other work shows up in the times.
@@ -13,7 +14,7 @@ input=$scratch/input.ply
 [ -f "$what" ] && input=$what
 cleanup() {
   [ "$input" = "$what" ] || rm -f "$input"
-  rm -f "$scratch"/threads-*.atp "$scratch"/mpi-*.atp "$scratch"/run.log
+  rm -f "$scratch"/threads-*.atp "$scratch"/mpi-*.atp "$scratch"/run.log "$scratch"/time.log
   [ -n "${2:-}" ] || rmdir "$scratch" 2>/dev/null || true
 }
 trap cleanup EXIT
@@ -36,18 +37,20 @@ run() {
   shift
   local load
   load=$(cut -d' ' -f1 /proc/loadavg)
-  /usr/bin/time -f "peak %M KiB" -o "$scratch/time.log" "$@" >"$scratch/run.log" 2>&1 ||
+  # mpirun waits for its ranks, so its children's CPU time is theirs.
+  /usr/bin/time -f "%U %S" -o "$scratch/time.log" "$@" >"$scratch/run.log" 2>&1 ||
     { cat "$scratch/run.log"; exit 1; }
-  local wall simplify workers coordinator
+  local wall simplify workers coordinator cpu
+  cpu=$(awk '{ print $1 + $2 }' "$scratch/time.log")
   wall=$(sed -nE 's/^done: .*\(([0-9.]+)s\).*/\1/p' "$scratch/run.log")
   simplify=$(sed -nE 's/^simplify: .*, ([0-9.]+)s$/\1/p' "$scratch/run.log")
   coordinator=$(sed -nE 's/^done: .*peak memory ([0-9]+) MiB/\1/p' "$scratch/run.log")
   workers=$(sed -nE 's/^mpi: (.*)$/; \1/p' "$scratch/run.log")
   [ -n "$baseline" ] || baseline=$wall
   awk -v n="$name" -v w="$wall" -v s="$simplify" -v b="$baseline" -v c="$coordinator" \
-    -v l="$load" -v k="$workers" 'BEGIN {
-    printf "%-16s %7.1f s wall (simplify %6.1f s), speed-up %.2f, peak %s MiB (load before %s)%s\n",
-      n, w, s, b / w, c, l, k }'
+    -v l="$load" -v k="$workers" -v u="$cpu" 'BEGIN {
+    printf "%-16s %7.1f s wall (simplify %6.1f s), speed-up %.2f, %7.1f s CPU, peak %s MiB (load before %s)%s\n",
+      n, w, s, b / w, u, c, l, k }'
 }
 
 options=(--quiet --scratch "$scratch")
