@@ -161,9 +161,9 @@ int Build(int argc, char** argv, atp::MpiJobRunner* workers)
       received += w.ResultBytes;
     }
     std::printf("mpi: %d workers, jobs per worker %s, %.0f MiB shipped to workers and %.0f MiB "
-                "back, peak memory per worker %.0f MiB (largest)\n",
+                "back, coordinator CPU %.1fs, peak memory per worker %.0f MiB (largest)\n",
       workers->Workers(), jobs.c_str(), double(sent) / (1 << 20), double(received) / (1 << 20),
-      double(peak) / (1 << 20));
+      workers->CoordinatorCpuSeconds(), double(peak) / (1 << 20));
   }
   std::printf("done: %s: %s triangles, %llu nodes, %d levels, %.1f MiB, %.2f bytes/triangle, "
               "%s (%.2fs), %s triangles/s, peak memory %.0f MiB\n",

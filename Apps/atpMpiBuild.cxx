@@ -7,6 +7,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -90,6 +91,13 @@ void Receive(MPI_Comm comm, const MPI_Status& status, std::vector<std::uint8_t>&
   Check(MPI_Recv(bytes.data(), count, MPI_BYTE, status.MPI_SOURCE, status.MPI_TAG, comm,
           MPI_STATUS_IGNORE),
     "receive");
+}
+
+double ProcessCpuSeconds()
+{
+  timespec now{};
+  ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+  return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
 }
 
 std::uint64_t PeakResidentBytes()
@@ -195,6 +203,7 @@ MpiJobRunner::~MpiJobRunner()
 
 void MpiJobRunner::Begin(const PatchJobContext& context)
 {
+  CoordinatorCpu = -ProcessCpuSeconds();
   const std::vector<std::uint8_t> bytes = EncodeContext(context);
   for (int w = 0; w < Workers(); ++w)
   {
@@ -286,6 +295,7 @@ std::vector<MpiJobRunner::WorkerStats> MpiJobRunner::Finish()
     return Stats;
   }
   Finished = true;
+  CoordinatorCpu += ProcessCpuSeconds();
   std::vector<std::uint8_t> buffer;
   for (std::size_t w = 0; w < Queued.size(); ++w)
   {

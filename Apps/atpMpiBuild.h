@@ -61,6 +61,9 @@ public:
   std::vector<WorkerStats> Finish();
 
   int Workers() const { return int(Queued.size()); }
+  /// CPU seconds the coordinator spent from Begin() to Finish(): loading, shipping and storing
+  /// jobs, what bounds how many workers one coordinator can feed.
+  double CoordinatorCpuSeconds() const { return CoordinatorCpu; }
 
 private:
   /// Loads job `index` and sends it to `worker` without waiting for the transfer.
@@ -85,6 +88,7 @@ private:
   /// The reorder buffer: results that arrived before an earlier job's, by job index.
   std::map<std::size_t, PatchJobResult> Arrived;
   bool Finished = false;
+  double CoordinatorCpu = 0; ///< from Begin() (negative until Finish())
 };
 
 /// A worker's whole life (ranks 1..N-1): build contexts and jobs from rank 0 until told to

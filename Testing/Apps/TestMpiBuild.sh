@@ -23,7 +23,7 @@ options=(--leaf-capacity 1000 --patch-budget 500 --quiet)
   fail "single-process build"
 out=$(mpi "$atp" build "$data/bumpy-torus.ply" -o "$work/mpi.atp" "${options[@]}" --mpi 2>&1) ||
   fail "mpi build: $out"
-grep -qE "mpi: 2 workers, jobs per worker [0-9]+/[0-9]+, [0-9]+ MiB shipped to workers and [0-9]+ MiB back, peak memory per worker [0-9]+ MiB" <<<"$out" ||
+grep -qE "mpi: 2 workers, jobs per worker [0-9]+/[0-9]+, [0-9]+ MiB shipped to workers and [0-9]+ MiB back, coordinator CPU [0-9.]+s, peak memory per worker [0-9]+ MiB" <<<"$out" ||
   fail "no worker summary in: $out"
 cmp -s "$work/single.atp" "$work/mpi.atp" || fail "the MPI model differs from the single-process one"
 
