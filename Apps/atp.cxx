@@ -5,6 +5,7 @@
 #include "atpCommandLine.h"
 #include "atpConstruction.h"
 #include "atpModelCommands.h"
+#include "atpMpiBuild.h"
 #include "atpPartitioner.h"
 #include "atpProcessMemory.h"
 #include "atpProgressReport.h"
@@ -25,6 +26,8 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <memory>
+#include <optional>
 #include <unistd.h>
 
 namespace
@@ -101,7 +104,8 @@ void SetVolumeOptions(const CommandLine& cl, vtkATPBuilder* builder)
   builder->SetRawVolumeLayout(&layout);
 }
 
-int Build(int argc, char** argv)
+/// `workers`: the MPI workers when the program runs under mpirun with --mpi, or null.
+int Build(int argc, char** argv, atp::MpiJobRunner* workers)
 {
   CommandLine cl("build",
     "Builds a multiresolution model (.atp) from a triangle mesh (PLY, OBJ, STL, VTP), streaming\n"
@@ -134,6 +138,9 @@ int Build(int argc, char** argv)
     "every core");
   cl.AddOption("bucket-memory", "", "MiB", "memory for in-memory triangle buckets", "256");
   cl.AddOption("scratch", "", "DIR", "directory for temporary files", "$TMPDIR or /tmp");
+  cl.AddFlag("mpi",
+    "run the leaf and diamond jobs on MPI worker processes (mpirun -np N: rank 0 coordinates, "
+    "ranks 1..N-1 build; the model is identical)");
   cl.AddFlag("quiet", "no progress output, only the summary");
   if (!cl.Parse(Rest(argc, argv)))
   {
@@ -159,6 +166,7 @@ int Build(int argc, char** argv)
   {
     builder->SetScratchDirectory(cl.Get("scratch").c_str());
   }
+  builder->SetJobRunner(workers);
 
   // Errors are reported once, by us, not also by VTK's output window.
   vtkNew<vtkCallbackCommand> swallowErrors;
@@ -230,6 +238,22 @@ int Build(int argc, char** argv)
     static_cast<unsigned long long>(c.QuotaMisses), c.CoarsestError,
     builder->GetConstructionSeconds());
   std::printf("scratch: peak %.1f MiB of patches\n", double(c.PeakScratchBytes) / (1 << 20));
+  if (workers)
+  {
+    std::string jobs;
+    std::uint64_t peak = 0, sent = 0, received = 0;
+    for (const atp::MpiJobRunner::WorkerStats& w : workers->Finish())
+    {
+      jobs += (jobs.empty() ? "" : "/") + std::to_string(w.Jobs);
+      peak = std::max(peak, w.PeakMemoryBytes);
+      sent += w.JobBytes;
+      received += w.ResultBytes;
+    }
+    std::printf("mpi: %d workers, jobs per worker %s, %.0f MiB shipped to workers and %.0f MiB "
+                "back, coordinator CPU %.1fs, peak memory per worker %.0f MiB (largest)\n",
+      workers->Workers(), jobs.c_str(), double(sent) / (1 << 20), double(received) / (1 << 20),
+      workers->CoordinatorCpuSeconds(), double(peak) / (1 << 20));
+  }
   std::printf("done: %s: %s triangles, %llu nodes, %d levels, %.1f MiB, %.2f bytes/triangle, "
               "%s (%.2fs), %s triangles/s, peak memory %.0f MiB\n",
     cl.Get("output").c_str(), FormatCount(double(p.Triangles)).c_str(),
@@ -314,11 +338,36 @@ int main(int argc, char** argv)
   // A file size limit (ulimit -f) must fail the write with an error we report, not kill us.
   std::signal(SIGXFSZ, SIG_IGN);
   const std::string command = argv[1];
+  // atp build --mpi: every rank runs this program; ranks other than 0 are workers.
+  std::optional<atp::MpiSession> mpi;
+  std::unique_ptr<atp::MpiJobRunner> workers; // stopped however rank 0 ends, before MPI is
+  if (atp::WantsMpi(argc, argv))
+  {
+    mpi.emplace(&argc, &argv);
+    if (mpi->Rank() > 0)
+    {
+      try
+      {
+        return atp::RunMpiWorker(MPI_COMM_WORLD);
+      }
+      catch (const std::exception& e)
+      {
+        // The coordinator may be waiting for this worker: end every process.
+        std::fprintf(stderr, "atp build: worker %d: error: %s\n", mpi->Rank(), e.what());
+        MPI_Abort(MPI_COMM_WORLD, 1);
+        return 1;
+      }
+    }
+  }
   try
   {
     if (command == "build")
     {
-      return Build(argc, argv);
+      if (mpi)
+      {
+        workers = std::make_unique<atp::MpiJobRunner>(MPI_COMM_WORLD);
+      }
+      return Build(argc, argv, workers.get());
     }
     if (command == "generate")
     {

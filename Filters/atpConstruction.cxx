@@ -1,17 +1,12 @@
 #include "atpConstruction.h"
 
 #include "atpBounds.h"
-#include "atpMemberLocator.h"
-#include "atpMergePatches.h"
 #include "atpModelFormat.h"
 #include "atpModelWriter.h"
-#include "atpNormalEncoding.h"
-#include "atpParallel.h"
-#include "atpPatchCodec.h"
+#include "atpPatchJobRunner.h"
 #include "atpPatchStore.h"
 #include "atpQuantizationGrid.h"
 #include "atpScratchFile.h"
-#include "atpSimplifier.h"
 
 #include <algorithm>
 #include <cstring>
@@ -40,26 +35,6 @@ struct NodeResult
   NormalCone Cone; ///< saturated: holds the face normals of the patch and of all descendants
 };
 
-/// A finished patch before it is stored: the mesh and what is computed from it off the main
-/// thread.
-struct MadePatch
-{
-  PatchMesh Mesh;
-  std::vector<std::uint8_t> Encoded;
-  Sphere Tight;
-  NormalCone Cone;
-};
-
-/// Patches made in one parallel step, written out in order afterwards.
-struct DiamondWork
-{
-  std::vector<NodeIndex> Members;
-  std::vector<MadePatch> Patches;
-  double Error = 0;
-  std::size_t Collapses = 0;
-  bool QuotasMet = true;
-};
-
 class ModelConstruction
 {
 public:
@@ -71,8 +46,9 @@ public:
     , Input(input)
     , Options(options)
     , Progress(progress)
-    , Threads(options.Threads > 0 ? options.Threads : HardwareThreads())
-    , Grid(QuantizationGrid::ForBounds(bounds.Min.data(), bounds.Max.data()))
+    , Context(bounds, options.PatchBudget, input.HasColors)
+    , OwnRunner(options.Runner ? nullptr : MakeThreadJobRunner(options.Threads))
+    , Runner(options.Runner ? *options.Runner : *OwnRunner)
     , Intermediate(options.ScratchDirectory)
     , Encoded(options.ScratchDirectory)
     , Results(partition.Forest().Size())
@@ -81,6 +57,7 @@ public:
 
   ConstructionStats Run(const std::string& outputPath)
   {
+    Runner.Begin(Context);
     std::vector<std::vector<NodeIndex>> levels(std::size_t(Forest.Depth()) + 1);
     for (NodeIndex n = 0; n < NodeIndex(Forest.Size()); ++n)
     {
@@ -112,37 +89,6 @@ private:
     }
   }
 
-  /// A chunk of jobs big enough to keep every thread busy, small enough to bound memory.
-  std::size_t ChunkSize() const { return std::size_t(Threads) * 4; }
-
-  /// Encodes the patch; its sphere and cone bound what a reader decodes (quantized), not the
-  /// mesh before encoding.
-  void Finish(MadePatch& made, const PatchPrecision& precision) const
-  {
-    made.Encoded = EncodePatch(made.Mesh, Grid, precision);
-    PatchMesh decoded;
-    DecodePatch(made.Encoded.data(), made.Encoded.size(), Grid, decoded);
-    made.Tight = EnclosingSphere(decoded.Positions.data(), decoded.VertexCount());
-    made.Cone = FaceNormalCone(decoded);
-  }
-
-  /// Leaves keep every position bit; a simplified patch stores its interior on the coarsest
-  /// power-of-two grid whose rounding stays a small fraction of its error (the border keeps the
-  /// full grid, see PatchPrecision). Normals lose 4 of 16 bits inside patches (0.06 degrees).
-  PatchPrecision PrecisionFor(double error) const
-  {
-    PatchPrecision precision;
-    precision.InteriorNormalShift = 4;
-    constexpr double ShareOfError = 1.0 / 32;
-    PatchPrecision coarser = precision;
-    while (++coarser.InteriorPositionShift < QuantizationGrid::Bits &&
-      coarser.PositionError(Grid) <= ShareOfError * error)
-    {
-      precision = coarser;
-    }
-    return precision;
-  }
-
   /// Stores a finished patch for `node`: encoded bytes for the file, and the full-precision mesh
   /// for the parent diamond when there is one.
   void Store(NodeIndex node, const MadePatch& made, bool hasParent)
@@ -168,58 +114,17 @@ private:
   /// Leaves keep the input at full resolution: their bucket, welded into an indexed patch.
   void MakeLeafPatches(const std::vector<NodeIndex>& leaves, bool haveParents)
   {
-    std::vector<std::vector<SoupTriangle>> soups;
-    std::vector<MadePatch> made;
-    for (std::size_t first = 0; first < leaves.size(); first += ChunkSize())
-    {
-      const std::size_t count = std::min(ChunkSize(), leaves.size() - first);
-      soups.resize(count);
-      made.assign(count, MadePatch());
-      for (std::size_t i = 0; i < count; ++i)
-      {
-        soups[i].clear();
-        Partition.ReadLeaf(leaves[first + i], soups[i]);
-        Partition.ReleaseLeaf(leaves[first + i]);
-      }
-      ParallelFor(count, Threads, [&](std::size_t i) {
-        made[i].Mesh = WeldSoup(soups[i], Input.HasColors);
-        Finish(made[i], PrecisionFor(0));
+    Runner.Run(
+      leaves.size(),
+      [&](std::size_t i, PatchJob& job) {
+        Partition.ReadLeaf(leaves[i], job.Soup);
+        Partition.ReleaseLeaf(leaves[i]);
+      },
+      [&](std::size_t i, PatchJobResult& made) {
+        Store(leaves[i], made.Patches[0], haveParents);
+        Results[std::size_t(leaves[i])].Cone = made.Patches[0].Cone;
+        ReportProgress(1);
       });
-      for (std::size_t i = 0; i < count; ++i)
-      {
-        const NodeIndex leaf = leaves[first + i];
-        Store(leaf, made[i], haveParents);
-        Results[std::size_t(leaf)].Cone = made[i].Cone;
-      }
-      ReportProgress(count);
-    }
-  }
-
-  /// Without input colors the soup's (white) corner colors are left out: the model then has none.
-  static PatchMesh WeldSoup(const std::vector<SoupTriangle>& soup, bool colors)
-  {
-    PatchMesh corners;
-    corners.Positions.reserve(9 * soup.size());
-    corners.Normals.reserve(9 * soup.size());
-    corners.Colors.reserve(colors ? 12 * soup.size() : 0);
-    for (const SoupTriangle& t : soup)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        float n[3];
-        DecodeNormal(t.Normals[c], n);
-        corners.Positions.insert(corners.Positions.end(), t.V[c], t.V[c] + 3);
-        corners.Normals.insert(corners.Normals.end(), n, n + 3);
-        if (colors)
-        {
-          corners.Colors.insert(corners.Colors.end(), t.Colors[c], t.Colors[c] + 4);
-        }
-      }
-      corners.BoundaryEdges.push_back(t.BoundaryEdges);
-    }
-    corners.Indices.resize(3 * soup.size());
-    std::iota(corners.Indices.begin(), corners.Indices.end(), 0u);
-    return MergePatches({ &corners });
   }
 
   /// Leaves are never refined, but their diamond still shares one saturated sphere (the
@@ -263,78 +168,43 @@ private:
   void SimplifyDiamonds(const std::vector<NodeIndex>& inner, bool haveParents)
   {
     const std::vector<std::vector<NodeIndex>> diamonds = GroupByDiamond(inner);
-    std::vector<DiamondWork> work;
-    for (std::size_t first = 0; first < diamonds.size(); first += ChunkSize())
-    {
-      const std::size_t count = std::min(ChunkSize(), diamonds.size() - first);
-      work.assign(count, DiamondWork());
-      ParallelFor(count, Threads, [&](std::size_t i) {
-        work[i].Members = diamonds[first + i];
-        SimplifyDiamond(work[i]);
+    Runner.Run(
+      diamonds.size(),
+      [&](std::size_t i, PatchJob& job) { LoadDiamond(diamonds[i], job); },
+      [&](std::size_t i, PatchJobResult& made) {
+        SaturateDiamond(diamonds[i], made, haveParents);
+        ReportProgress(diamonds[i].size());
       });
-      std::size_t nodes = 0;
-      for (DiamondWork& w : work)
-      {
-        SaturateDiamond(w, haveParents);
-        nodes += w.Members.size();
-      }
-      ReportProgress(nodes);
-    }
   }
 
-  /// Runs on a worker thread: reads only finished children, writes only into `w`.
-  void SimplifyDiamond(DiamondWork& w) const
+  /// A diamond's job: its members' shapes and their children's full-precision patches.
+  void LoadDiamond(const std::vector<NodeIndex>& members, PatchJob& job) const
   {
-    std::vector<PatchMesh> children;
-    std::vector<Tetra> memberShapes;
-    double childError = 0;
-    for (NodeIndex m : w.Members)
+    for (NodeIndex m : members)
     {
-      memberShapes.push_back(Forest[m].Geometry);
+      job.Members.push_back(Forest[m].Geometry);
       for (NodeIndex c : Forest[m].Children)
       {
-        children.emplace_back();
-        Intermediate.Get(Results[std::size_t(c)].Intermediate, children.back());
-        childError = std::max(childError, Results[std::size_t(c)].Error);
+        job.Children.emplace_back();
+        Intermediate.Get(Results[std::size_t(c)].Intermediate, job.Children.back());
+        job.ChildError = std::max(job.ChildError, Results[std::size_t(c)].Error);
       }
-    }
-    std::vector<const PatchMesh*> parts;
-    for (const PatchMesh& c : children)
-    {
-      parts.push_back(&c);
-    }
-    const PatchMesh merged = MergePatches(parts);
-    children.clear();
-    const MemberLocator locator(memberShapes, Partition.Frame());
-    const std::vector<std::uint32_t> quotas(w.Members.size(), Options.PatchBudget);
-    SimplifyResult simplified = Simplify(merged, int(w.Members.size()),
-      [&locator](const double p[3]) { return locator.MemberOf(p); }, quotas);
-    // The merged input was already off the original by up to its children's error; storing
-    // the interior on a coarser grid adds its rounding.
-    const PatchPrecision precision = PrecisionFor(simplified.Error + childError);
-    w.Error = simplified.Error + childError + precision.PositionError(Grid);
-    w.Collapses = simplified.Collapses;
-    w.QuotasMet = simplified.QuotasMet;
-    w.Patches.resize(w.Members.size());
-    for (std::size_t i = 0; i < w.Members.size(); ++i)
-    {
-      w.Patches[i].Mesh = std::move(simplified.Regions[i]);
-      Finish(w.Patches[i], precision);
     }
   }
 
   /// Runs on the main thread, in diamond order: stores the patches and saturates errors,
   /// spheres and cones over the diamond and its children (paper 5.2).
-  void SaturateDiamond(DiamondWork& w, bool haveParents)
+  void SaturateDiamond(
+    const std::vector<NodeIndex>& members, const PatchJobResult& made, bool haveParents)
   {
     double childSaturatedError = 0;
     std::vector<Sphere> spheres;
-    for (std::size_t i = 0; i < w.Members.size(); ++i)
+    for (std::size_t i = 0; i < members.size(); ++i)
     {
-      const NodeIndex m = w.Members[i];
-      Store(m, w.Patches[i], haveParents);
+      const NodeIndex m = members[i];
+      Store(m, made.Patches[i], haveParents);
       spheres.push_back(LoadSphere(Results[std::size_t(m)].Sphere));
-      std::vector<NormalCone> cones{ w.Patches[i].Cone };
+      std::vector<NormalCone> cones{ made.Patches[i].Cone };
       for (NodeIndex c : Forest[m].Children)
       {
         NodeResult& child = Results[std::size_t(c)];
@@ -345,11 +215,11 @@ private:
       }
       Results[std::size_t(m)].Cone = EnclosingCone(cones);
     }
-    const double error = w.Error;
+    const double error = made.Error;
     const double saturatedError = std::max(error, childSaturatedError);
     float saturatedSphere[4];
     StoreSphere(EnclosingSphere(spheres), saturatedSphere);
-    for (NodeIndex m : w.Members)
+    for (NodeIndex m : members)
     {
       NodeResult& r = Results[std::size_t(m)];
       r.Error = error;
@@ -357,9 +227,8 @@ private:
       std::copy(saturatedSphere, saturatedSphere + 4, r.SaturatedSphere);
     }
     ++Stats.Diamonds;
-    Stats.Collapses += w.Collapses;
-    Stats.QuotaMisses += !w.QuotasMet;
-    w.Patches.clear();
+    Stats.Collapses += made.Collapses;
+    Stats.QuotaMisses += !made.QuotasMet;
   }
 
   /// Nodes in file order: by level, then by the Morton code of their centroid, so the
@@ -421,10 +290,10 @@ private:
       header.BoxMin[a] = Bounds.Min[a];
       header.BoxMax[a] = Bounds.Max[a];
       header.LatticeOrigin[a] = Partition.Frame().Origin()[a];
-      header.QuantizationOrigin[a] = Grid.Origin[a];
+      header.QuantizationOrigin[a] = Context.Grid.Origin[a];
     }
     header.LatticeScale = Partition.Frame().Scale();
-    header.QuantizationStep = Grid.Step;
+    header.QuantizationStep = Context.Grid.Step;
     header.InputTriangles = Input.TrianglesEmitted;
     header.InputBoundaryEdges = Input.BoundaryEdges;
     header.StoredTriangles = Stats.StoredTriangles;
@@ -455,8 +324,9 @@ private:
   const InputStats Input;
   const ConstructionOptions Options;
   const ConstructionProgress& Progress;
-  const int Threads;
-  const QuantizationGrid Grid;
+  const PatchJobContext Context;
+  const std::unique_ptr<PatchJobRunner> OwnRunner;
+  PatchJobRunner& Runner;
   PatchStore Intermediate;
   ScratchFile Encoded;
   std::uint64_t EncodedEnd = 0;

@@ -15,11 +15,15 @@
 namespace atp
 {
 
+class PatchJobRunner;
+
 struct ConstructionOptions
 {
   /// Most triangles a tetrahedron of a simplified level holds (paper: a few thousand).
   std::uint32_t PatchBudget = 2000;
   int Threads = 0; ///< 0: every core
+  /// Where the leaf and diamond jobs run; null: on Threads threads of this process.
+  PatchJobRunner* Runner = nullptr;
   std::string ScratchDirectory;
   /// Stored in the model: screen-space error = ErrorScale * projected object-space error.
   float ErrorScale = 1;

@@ -149,6 +149,7 @@ int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, v
     atp::ConstructionOptions construction;
     construction.PatchBudget = std::uint32_t(this->PatchBudget);
     construction.Threads = this->NumberOfThreads;
+    construction.Runner = this->JobRunner;
     construction.ScratchDirectory = scratch;
     this->SetProgressText("simplifying");
     this->Last->Construction = atp::BuildModel(*partitioner, bounds, this->Last->Input,
@@ -266,6 +267,7 @@ void vtkATPBuilder::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LeafCapacity: " << this->LeafCapacity << "\n";
   os << indent << "PatchBudget: " << this->PatchBudget << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "JobRunner: " << (this->JobRunner ? "external" : "threads") << "\n";
   os << indent << "BucketMemoryMiB: " << this->BucketMemoryMiB << "\n";
   os << indent << "ScratchDirectory: "
      << (this->ScratchDirectory ? this->ScratchDirectory : "(default)") << "\n";

@@ -30,6 +30,7 @@ class vtkPolyData;
 
 namespace atp
 {
+class PatchJobRunner;
 struct ConstructionStats;
 struct PartitionStats;
 struct InputStats;
@@ -90,6 +91,12 @@ public:
   vtkGetMacro(NumberOfThreads, int);
   ///@}
 
+  /// Where the leaf and diamond jobs run (not owned; must outlive Build()): nullptr (default)
+  /// runs them on NumberOfThreads threads, `atp build --mpi` on MPI worker processes. The model
+  /// is byte-identical either way.
+  void SetJobRunner(atp::PatchJobRunner* runner) { this->JobRunner = runner; }
+  atp::PatchJobRunner* GetJobRunner() const { return this->JobRunner; }
+
   ///@{
   /// Most triangles a leaf tetrahedron holds before it splits (default 4000).
   vtkSetClampMacro(LeafCapacity, int, 1, 1 << 30);
@@ -149,6 +156,7 @@ protected:
   int PatchBudget = 2000;
   int NumberOfThreads = 0;
   int BucketMemoryMiB = 256;
+  atp::PatchJobRunner* JobRunner = nullptr;
   vtkTypeUInt64 ExpectedTriangles = 0;
 
 private:

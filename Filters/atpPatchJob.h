@@ -1,0 +1,77 @@
+// The unit of construction work (paper 5.2): one leaf's triangles welded into its patch, or one
+// diamond's children's patches merged and simplified into its members' patches, each patch
+// encoded with its tight sphere and normal cone. A job is a pure function of its inputs and the
+// build's context, so it runs the same on a thread or on another machine (atpPatchJobRunner.h),
+// and the model is byte-identical wherever its jobs ran.
+#ifndef atpPatchJob_h
+#define atpPatchJob_h
+
+#include "atpBounds.h"
+#include "atpPatchMesh.h"
+#include "atpQuantizationGrid.h"
+#include "atpTetra.h"
+#include "atpTriangleSource.h"
+#include "vtkATPFiltersModule.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace atp
+{
+
+/// What every job of one build shares; it follows from the input bounds and two options, which
+/// is all that travels to another process.
+struct VTKATPFILTERS_EXPORT PatchJobContext
+{
+  PatchJobContext(const Box& bounds, std::uint32_t patchBudget, bool colors);
+
+  Box Bounds;
+  /// Most triangles a member of a simplified diamond keeps.
+  std::uint32_t PatchBudget;
+  /// Whether patches keep vertex colors (the input has them).
+  bool Colors;
+  QuantizationGrid Grid; ///< the model's one position grid
+  LatticeFrame Frame;    ///< the partition's lattice, which places points in members
+};
+
+/// A leaf job has no members: its soup is welded. A diamond job simplifies the children's
+/// patches of its members (in TetId order; children in member order, then child order).
+struct PatchJob
+{
+  std::vector<SoupTriangle> Soup;
+  std::vector<Tetra> Members;
+  std::vector<PatchMesh> Children;
+  /// The largest error of the children: the merged input is already that far off the original.
+  double ChildError = 0;
+
+  bool IsLeaf() const { return Members.empty(); }
+};
+
+/// A finished patch: the full-precision mesh (the parent diamond's input) and its encoding,
+/// with the sphere and cone of what a reader decodes.
+struct MadePatch
+{
+  PatchMesh Mesh;
+  std::vector<std::uint8_t> Encoded;
+  Sphere Tight;
+  NormalCone Cone;
+};
+
+/// One patch per member (a leaf: one), and the diamond's figures.
+struct PatchJobResult
+{
+  std::vector<MadePatch> Patches;
+  double Error = 0; ///< object-space error of the patches (0 for a leaf)
+  std::uint64_t Collapses = 0;
+  /// False when locked geometry kept a member above the patch budget.
+  bool QuotasMet = true;
+};
+
+/// Runs one job, freeing its inputs as soon as they are merged. Throws std::exception on
+/// failure (e.g. an inconsistent mesh).
+VTKATPFILTERS_EXPORT PatchJobResult MakePatches(const PatchJobContext& context, PatchJob job);
+
+} // namespace atp
+
+#endif

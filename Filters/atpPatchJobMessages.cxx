@@ -1,0 +1,229 @@
+#include "atpPatchJobMessages.h"
+
+#include <cstring>
+#include <stdexcept>
+#include <type_traits>
+
+namespace atp
+{
+namespace
+{
+
+/// Changes whenever a shipped type changes size: mismatched builds refuse each other.
+constexpr std::uint64_t LayoutSignature = (std::uint64_t(0x4154504a) << 32) // "ATPJ"
+  ^ (sizeof(SoupTriangle) << 24) ^ (sizeof(Tetra) << 16) ^ (sizeof(Sphere) << 8) ^
+  sizeof(NormalCone);
+
+class ByteWriter
+{
+public:
+  explicit ByteWriter(std::vector<std::uint8_t>& out)
+    : Out(out)
+  {
+    Out.clear();
+  }
+
+  template<typename T>
+  void Put(const T& value)
+  {
+    static_assert(std::is_trivially_copyable<T>::value, "memory images only");
+    const auto* bytes = reinterpret_cast<const std::uint8_t*>(&value);
+    Out.insert(Out.end(), bytes, bytes + sizeof(T));
+  }
+
+  template<typename T>
+  void PutArray(const std::vector<T>& values)
+  {
+    static_assert(std::is_trivially_copyable<T>::value, "memory images only");
+    Put(std::uint64_t(values.size()));
+    const auto* bytes = reinterpret_cast<const std::uint8_t*>(values.data());
+    Out.insert(Out.end(), bytes, bytes + values.size() * sizeof(T));
+  }
+
+  void PutMesh(const PatchMesh& mesh)
+  {
+    PutArray(mesh.Positions);
+    PutArray(mesh.Normals);
+    PutArray(mesh.Colors);
+    PutArray(mesh.Indices);
+    PutArray(mesh.BoundaryEdges);
+  }
+
+private:
+  std::vector<std::uint8_t>& Out;
+};
+
+class ByteReader
+{
+public:
+  ByteReader(const std::uint8_t* data, std::size_t bytes, const char* what)
+    : Next(data)
+    , End(data + bytes)
+    , What(what)
+  {
+  }
+
+  template<typename T>
+  T Get()
+  {
+    T value;
+    Take(&value, sizeof(T));
+    return value;
+  }
+
+  template<typename T>
+  void GetArray(std::vector<T>& values)
+  {
+    const auto count = Get<std::uint64_t>();
+    if (count > std::uint64_t(End - Next) / sizeof(T))
+    {
+      Fail();
+    }
+    values.resize(std::size_t(count));
+    Take(values.data(), values.size() * sizeof(T));
+  }
+
+  void GetMesh(PatchMesh& mesh)
+  {
+    GetArray(mesh.Positions);
+    GetArray(mesh.Normals);
+    GetArray(mesh.Colors);
+    GetArray(mesh.Indices);
+    GetArray(mesh.BoundaryEdges);
+  }
+
+  /// A count of things that each take at least `minimumBytes`: checked before allocating.
+  std::size_t GetCount(std::size_t minimumBytes)
+  {
+    const auto count = Get<std::uint64_t>();
+    if (count > std::uint64_t(End - Next) / minimumBytes)
+    {
+      Fail();
+    }
+    return std::size_t(count);
+  }
+
+  void ExpectEnd() const
+  {
+    if (Next != End)
+    {
+      Fail();
+    }
+  }
+
+private:
+  void Take(void* out, std::size_t bytes)
+  {
+    if (bytes > std::size_t(End - Next))
+    {
+      Fail();
+    }
+    if (bytes > 0)
+    {
+      std::memcpy(out, Next, bytes);
+    }
+    Next += bytes;
+  }
+
+  [[noreturn]] void Fail() const
+  {
+    throw std::runtime_error(std::string("malformed ") + What + " message");
+  }
+
+  const std::uint8_t* Next;
+  const std::uint8_t* End;
+  const char* What;
+};
+
+/// The five counts of an encoded mesh.
+constexpr std::size_t MeshMinimumBytes = 5 * sizeof(std::uint64_t);
+
+} // namespace
+
+std::vector<std::uint8_t> EncodeContext(const PatchJobContext& context)
+{
+  std::vector<std::uint8_t> out;
+  ByteWriter w(out);
+  w.Put(LayoutSignature);
+  w.Put(context.Bounds);
+  w.Put(context.PatchBudget);
+  w.Put(std::uint8_t(context.Colors));
+  return out;
+}
+
+PatchJobContext DecodeContext(const std::uint8_t* data, std::size_t bytes)
+{
+  ByteReader r(data, bytes, "build context");
+  if (r.Get<std::uint64_t>() != LayoutSignature)
+  {
+    throw std::runtime_error(
+      "build context from a different atp build (every process must run the same atp)");
+  }
+  const auto bounds = r.Get<Box>();
+  const auto budget = r.Get<std::uint32_t>();
+  const auto colors = r.Get<std::uint8_t>();
+  r.ExpectEnd();
+  return PatchJobContext(bounds, budget, colors != 0);
+}
+
+void EncodeJob(const PatchJob& job, std::vector<std::uint8_t>& out)
+{
+  ByteWriter w(out);
+  w.PutArray(job.Soup);
+  w.PutArray(job.Members);
+  w.Put(std::uint64_t(job.Children.size()));
+  for (const PatchMesh& child : job.Children)
+  {
+    w.PutMesh(child);
+  }
+  w.Put(job.ChildError);
+}
+
+void DecodeJob(const std::uint8_t* data, std::size_t bytes, PatchJob& out)
+{
+  ByteReader r(data, bytes, "job");
+  r.GetArray(out.Soup);
+  r.GetArray(out.Members);
+  out.Children.resize(r.GetCount(MeshMinimumBytes));
+  for (PatchMesh& child : out.Children)
+  {
+    r.GetMesh(child);
+  }
+  out.ChildError = r.Get<double>();
+  r.ExpectEnd();
+}
+
+void EncodeResult(const PatchJobResult& result, std::vector<std::uint8_t>& out)
+{
+  ByteWriter w(out);
+  w.Put(std::uint64_t(result.Patches.size()));
+  for (const MadePatch& patch : result.Patches)
+  {
+    w.PutMesh(patch.Mesh);
+    w.PutArray(patch.Encoded);
+    w.Put(patch.Tight);
+    w.Put(patch.Cone);
+  }
+  w.Put(result.Error);
+  w.Put(result.Collapses);
+  w.Put(std::uint8_t(result.QuotasMet));
+}
+
+void DecodeResult(const std::uint8_t* data, std::size_t bytes, PatchJobResult& out)
+{
+  ByteReader r(data, bytes, "result");
+  out.Patches.resize(r.GetCount(MeshMinimumBytes + sizeof(std::uint64_t)));
+  for (MadePatch& patch : out.Patches)
+  {
+    r.GetMesh(patch.Mesh);
+    r.GetArray(patch.Encoded);
+    patch.Tight = r.Get<Sphere>();
+    patch.Cone = r.Get<NormalCone>();
+  }
+  out.Error = r.Get<double>();
+  out.Collapses = r.Get<std::uint64_t>();
+  out.QuotasMet = r.Get<std::uint8_t>() != 0;
+  r.ExpectEnd();
+}
+
+} // namespace atp

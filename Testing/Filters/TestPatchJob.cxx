@@ -1,0 +1,172 @@
+// Construction's jobs on their own, as the MPI build ships them: a build whose every job and
+// result travels as bytes, made in reverse order, writes the same model as the threaded build;
+// malformed messages are refused, never read past.
+#include "atpPatchJob.h"
+#include "atpPatchJobMessages.h"
+#include "atpPatchJobRunner.h"
+#include "vtkATPBuilder.h"
+
+#include "vtkNew.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <unistd.h>
+
+namespace
+{
+
+std::string TempPath(const std::string& name)
+{
+  return "/tmp/atp-test-patchjob-" + std::to_string(::getpid()) + "-" + name;
+}
+
+std::string ReadBytes(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+/// A remote runner without the network: the context, every job and every result go through
+/// their messages; a batch's jobs are made last to first and stored first to last.
+class ByteTripRunner : public atp::PatchJobRunner
+{
+public:
+  void Begin(const atp::PatchJobContext& context) override
+  {
+    const std::vector<std::uint8_t> bytes = atp::EncodeContext(context);
+    Context.emplace(atp::DecodeContext(bytes.data(), bytes.size()));
+  }
+
+  void Run(std::size_t count, const LoadJob& load, const StoreResult& store) override
+  {
+    std::vector<std::vector<std::uint8_t>> messages(count);
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      atp::PatchJob job;
+      load(i, job);
+      atp::EncodeJob(job, messages[i]);
+      LeafJobs += job.IsLeaf();
+      DiamondJobs += !job.IsLeaf();
+    }
+    for (std::size_t i = count; i-- > 0;)
+    {
+      atp::PatchJob job;
+      atp::DecodeJob(messages[i].data(), messages[i].size(), job);
+      atp::EncodeResult(atp::MakePatches(*Context, std::move(job)), messages[i]);
+    }
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      atp::PatchJobResult result;
+      atp::DecodeResult(messages[i].data(), messages[i].size(), result);
+      store(i, result);
+    }
+  }
+
+  std::optional<atp::PatchJobContext> Context;
+  std::size_t LeafJobs = 0, DiamondJobs = 0;
+};
+
+int Build(const std::string& out, atp::PatchJobRunner* runner)
+{
+  vtkNew<vtkATPBuilder> builder;
+  builder->SetInputFileName(ATP_DATA_DIR "/bumpy-torus.ply");
+  builder->SetFileName(out.c_str());
+  builder->SetLeafCapacity(1000); // a deeper hierarchy: many leaf and diamond jobs
+  builder->SetPatchBudget(500);
+  builder->SetNumberOfThreads(2);
+  builder->SetJobRunner(runner);
+  return builder->Build();
+}
+
+/// Every way of cutting `message` short, or making it longer, is refused.
+template<typename Decode>
+void ExpectOnlyTheWholeMessageDecodes(std::vector<std::uint8_t> message, const Decode& decode)
+{
+  EXPECT_NO_THROW(decode(message));
+  const std::vector<std::uint8_t> whole = message;
+  for (std::size_t size = 0; size < whole.size(); ++size)
+  {
+    message.assign(whole.begin(), whole.begin() + std::ptrdiff_t(size));
+    EXPECT_THROW(decode(message), std::runtime_error) << "cut to " << size << " bytes";
+  }
+  message = whole;
+  message.push_back(0);
+  EXPECT_THROW(decode(message), std::runtime_error) << "one byte too many";
+  // A count far beyond the message is refused before anything is allocated.
+  message = whole;
+  const std::uint64_t huge = std::uint64_t(1) << 60;
+  std::memcpy(message.data(), &huge, sizeof(huge));
+  EXPECT_THROW(decode(message), std::runtime_error) << "huge count";
+}
+
+} // namespace
+
+TEST(PatchJob, ModelIsIdenticalWhenEveryJobTravelsAsBytes)
+{
+  const std::string threads = TempPath("threads.atp"), shipped = TempPath("shipped.atp");
+  ASSERT_EQ(Build(threads, nullptr), 1);
+  ByteTripRunner runner;
+  ASSERT_EQ(Build(shipped, &runner), 1);
+  EXPECT_GT(runner.LeafJobs, 100u);
+  EXPECT_GT(runner.DiamondJobs, 50u);
+  const std::string reference = ReadBytes(threads);
+  EXPECT_GT(reference.size(), 100000u);
+  EXPECT_TRUE(ReadBytes(shipped) == reference);
+  std::remove(threads.c_str());
+  std::remove(shipped.c_str());
+}
+
+TEST(PatchJob, MalformedMessagesAreRefused)
+{
+  atp::Box bounds;
+  const float corners[2][3] = { { 0, 0, 0 }, { 1, 2, 3 } };
+  bounds.Add(corners[0]);
+  bounds.Add(corners[1]);
+  const atp::PatchJobContext context(bounds, 100, true);
+
+  atp::PatchJob job;
+  job.Soup.resize(2);
+  for (std::size_t t = 0; t < job.Soup.size(); ++t)
+  {
+    std::memset(&job.Soup[t], 0, sizeof(atp::SoupTriangle));
+    for (int c = 0; c < 3; ++c)
+    {
+      job.Soup[t].V[c][c] = 1.0f + float(t);
+    }
+  }
+  std::vector<std::uint8_t> message;
+  atp::EncodeJob(job, message);
+  ExpectOnlyTheWholeMessageDecodes(message, [](const std::vector<std::uint8_t>& m) {
+    atp::PatchJob decoded;
+    atp::DecodeJob(m.data(), m.size(), decoded);
+  });
+
+  atp::EncodeResult(atp::MakePatches(context, job), message);
+  ExpectOnlyTheWholeMessageDecodes(message, [](const std::vector<std::uint8_t>& m) {
+    atp::PatchJobResult decoded;
+    atp::DecodeResult(m.data(), m.size(), decoded);
+  });
+
+  message = atp::EncodeContext(context);
+  const atp::PatchJobContext back = atp::DecodeContext(message.data(), message.size());
+  EXPECT_EQ(back.PatchBudget, 100u);
+  EXPECT_TRUE(back.Colors);
+  EXPECT_EQ(back.Grid.Step, context.Grid.Step);
+  message[0] ^= 1; // another layout: another atp build
+  try
+  {
+    atp::DecodeContext(message.data(), message.size());
+    ADD_FAILURE() << "a context of another layout was accepted";
+  }
+  catch (const std::runtime_error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("different atp build"), std::string::npos) << e.what();
+  }
+}
