@@ -12,8 +12,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 what=${1:-brain}
 scratch=${2:-$(mktemp -d /tmp/atp-bench.XXXXXX)}
-input=$scratch/input.ply
-[ -f "$what" ] && input=$what
+source bench/common.sh
+input_path "$what" "$scratch"
 cleanup() {
   [ "$input" = "$what" ] || rm -f "$input"
   rm -f "$scratch/model.atp" "$scratch/df.log"
@@ -21,15 +21,8 @@ cleanup() {
 }
 trap cleanup EXIT
 
-[ -x build/bin/atp ] && [ -x build/bin/atp-bench-brain-surface ] || bash scripts/build.sh
-echo "machine: $(nproc) cores, $(free -g | awk '/Mem:/ {print $2}') GiB, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
-if [ "$input" != "$what" ]; then
-  if [ "$what" = brain ]; then
-    build/bin/atp-bench-brain-surface "$input" 2 60
-  else
-    build/bin/atp generate -n "$what" -o "$input"
-  fi
-fi
+machine
+make_input "$what"
 input_bytes=$(stat -c %s "$input")
 echo "input: $((input_bytes / 1048576)) MiB binary PLY"
 cat "$input" > /dev/null

@@ -10,8 +10,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 what=${1:-brain}
 scratch=${2:-$(mktemp -d /tmp/atp-bench-mpi.XXXXXX)}
-input=$scratch/input.ply
-[ -f "$what" ] && input=$what
+source bench/common.sh
+input_path "$what" "$scratch"
 cleanup() {
   [ "$input" = "$what" ] || rm -f "$input"
   rm -f "$scratch"/threads-*.atp "$scratch"/mpi-*.atp "$scratch"/run.log "$scratch"/time.log
@@ -19,15 +19,8 @@ cleanup() {
 }
 trap cleanup EXIT
 
-[ -x build/bin/atp ] && [ -x build/bin/atp-bench-brain-surface ] || bash scripts/build.sh
-echo "machine: $(nproc) cores, $(free -g | awk '/Mem:/ {print $2}') GiB, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(mpirun --version | head -1)"
-if [ "$input" != "$what" ]; then
-  if [ "$what" = brain ]; then
-    build/bin/atp-bench-brain-surface "$input" 2 60
-  else
-    build/bin/atp generate -n "$what" -o "$input"
-  fi
-fi
+machine ", $(mpirun --version | head -1)"
+make_input "$what"
 cat "$input" >/dev/null
 
 # run NAME COMMAND...: one build, its figures on one line.

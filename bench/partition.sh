@@ -13,7 +13,8 @@ cleanup() { rm -f "$scratch/bench.ply" "$scratch/bench.atp"; [ -n "${2:-}" ] || 
 trap cleanup EXIT
 
 [ -x build/bin/atp ] || bash scripts/build.sh
-echo "machine: $(nproc) cores, $(free -g | awk '/Mem:/ {print $2}') GiB, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
+source bench/common.sh
+machine
 build/bin/atp generate -n "$triangles" -o "$scratch/bench.ply"
 ls -l "$scratch/bench.ply" | awk '{printf "input: %.0f MiB binary PLY\n", $5/1048576}'
 # Warm the page cache once so the figure measures the build, not the disk.

@@ -13,7 +13,8 @@ cleanup() { rm -f "$scratch/volume.raw" "$scratch/model.atp"; [ -n "${3:-}" ] ||
 trap cleanup EXIT
 
 [ -x build/bin/atp ] && [ -x build/bin/atp-bench-volume ] || bash scripts/build.sh
-echo "machine: $(nproc) cores, $(free -g | awk '/Mem:/ {print $2}') GiB, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
+source bench/common.sh
+machine
 build/bin/atp-bench-volume "$scratch/volume.raw" "$n"
 /usr/bin/time -f "time: %e s wall, %U s user, peak resident %M KiB" \
   build/bin/atp build "$scratch/volume.raw" --dims "$n,$n,$n" --type float32 --iso "$((n / 3))" \

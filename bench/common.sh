@@ -1,0 +1,29 @@
+# Sourced by the benchmark scripts: the machine line every figure is read against, and the mesh
+# the construction benchmarks read. WHAT is "brain" (the MRI
+# isosurface of ch2better.nii.gz from mricron-data at 60, resampled 2x: 9.1M triangles), a
+# triangle count (a generated bumpy torus of about that many) or a mesh file.
+
+# input_path WHAT SCRATCH: sets $input, WHAT itself for a file, else input.ply in SCRATCH.
+input_path() {
+  input=$2/input.ply
+  if [ -f "$1" ]; then
+    input=$1
+  fi
+}
+
+# make_input WHAT: builds the programs if needed and writes $input unless WHAT is a file.
+make_input() {
+  [ -x build/bin/atp ] && [ -x build/bin/atp-bench-brain-surface ] || bash scripts/build.sh
+  if [ "$input" != "$1" ]; then
+    if [ "$1" = brain ]; then
+      build/bin/atp-bench-brain-surface "$input" 2 60
+    else
+      build/bin/atp generate -n "$1" -o "$input"
+    fi
+  fi
+}
+
+# The machine, for every figure printed after it.
+machine() {
+  echo "machine: $(nproc) cores, $(free -g | awk '/Mem:/ {print $2}') GiB, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)$*"
+}
