@@ -27,9 +27,27 @@ inline std::int16_t Snorm16(float v)
 } // namespace detail
 
 /// A zero vector encodes as +z (callers avoid it; the result is still a valid unit normal).
-inline void EncodeNormal(const float n[3], std::int16_t out[2])
+inline void EncodeNormal(const float given[3], std::int16_t out[2])
 {
-  const float l1 = std::fabs(n[0]) + std::fabs(n[1]) + std::fabs(n[2]);
+  float n[3] = { given[0], given[1], given[2] };
+  float l1 = std::fabs(n[0]) + std::fabs(n[1]) + std::fabs(n[2]);
+  if (!std::isfinite(l1))
+  {
+    // Sums of area-weighted normals can leave the float range: infinite components then give
+    // the direction (finite ones are negligible beside them), NaN ones count as zero, and
+    // finite ones too large to add up are scaled down.
+    const bool infinite = std::isinf(n[0]) || std::isinf(n[1]) || std::isinf(n[2]);
+    float largest = 0;
+    for (const float v : n)
+    {
+      largest = std::isfinite(v) && std::fabs(v) > largest ? std::fabs(v) : largest;
+    }
+    for (float& v : n)
+    {
+      v = std::isinf(v) ? std::copysign(1.0f, v) : (std::isnan(v) || infinite ? 0.0f : v / largest);
+    }
+    l1 = std::fabs(n[0]) + std::fabs(n[1]) + std::fabs(n[2]);
+  }
   float x = l1 > 0 ? n[0] / l1 : 0;
   float y = l1 > 0 ? n[1] / l1 : 0;
   if (l1 > 0 && n[2] < 0)

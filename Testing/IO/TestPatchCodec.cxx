@@ -1,6 +1,7 @@
 // Patch codec and quantization grid: round trips keep the triangle set, positions on the one
 // global grid (bit-identical across patches), normals and colors; hostile bytes only ever give
 // PatchFormatError or a valid patch.
+#include "atpNormalEncoding.h"
 #include "atpPatchCodec.h"
 #include "atpQuantizationGrid.h"
 
@@ -12,6 +13,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -280,6 +282,38 @@ TEST(PatchCodec, NormalsWithinStatedAngularError)
   }
   EXPECT_LT(worstDegrees, 0.005);
   std::printf("octahedral 2 x int16 normals: max angular error %.5f degrees\n", worstDegrees);
+}
+
+// Vertex normals are sums of area-weighted face normals: a mesh with huge coordinates overflows
+// them (the mesh fuzzer found NaN reaching the int16 conversion). Every float vector encodes to
+// a unit normal, in the direction that is left of it.
+TEST(NormalEncoding, OverflowedAndNaNVectorsEncodeToUnitNormals)
+{
+  const float inf = std::numeric_limits<float>::infinity();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float half = std::sqrt(0.5f);
+  const struct
+  {
+    float Given[3];
+    float Expected[3];
+  } cases[] = {
+    { { inf, 5, 0 }, { 1, 0, 0 } },
+    { { inf, -inf, 7 }, { half, -half, 0 } },
+    { { 0, 0, -inf }, { 0, 0, -1 } },
+    { { nan, nan, nan }, { 0, 0, 1 } },
+    { { nan, 1, 0 }, { 0, 1, 0 } },
+    { { 3e38f, 3e38f, 0 }, { half, half, 0 } },
+    { { -3e38f, 0, -3e38f }, { -half, 0, -half } },
+  };
+  for (const auto& c : cases)
+  {
+    std::int16_t encoded[2];
+    atp::EncodeNormal(c.Given, encoded);
+    float decoded[3];
+    atp::DecodeNormal(encoded, decoded);
+    EXPECT_LT(AngleDegrees(decoded, c.Expected), 0.01)
+      << c.Given[0] << " " << c.Given[1] << " " << c.Given[2];
+  }
 }
 
 TEST(PatchCodec, SharedVertexIsBitIdenticalAcrossPatches)
