@@ -13,6 +13,8 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include "FileTestFixture.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -233,28 +235,10 @@ void ExpectMesh(const Result& result, const Mesh& mesh, std::uint64_t boundaryEd
 // ---------------------------------------------------------------------------------------------
 // Writers
 
-class TriangleSources : public ::testing::Test
+class TriangleSources : public FileTestFixture
 {
 protected:
-  void SetUp() override
-  {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    this->Dir = fs::temp_directory_path() /
-      ("atp-io-test-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(this->Dir);
-    fs::create_directories(this->Dir);
-  }
-  void TearDown() override { fs::remove_all(this->Dir); }
-
-  std::string Path(const std::string& name) const { return (this->Dir / name).string(); }
   std::string Scratch() const { return this->Dir.string(); }
-
-  std::string Write(const std::string& name, const std::string& bytes) const
-  {
-    std::ofstream out(this->Path(name), std::ios::binary);
-    out << bytes;
-    return this->Path(name);
-  }
 
   Result Read(const std::string& path, std::size_t chunk = 5) const
   {
@@ -279,7 +263,6 @@ protected:
     }
   }
 
-  fs::path Dir;
 };
 
 struct PlyOptions

@@ -23,6 +23,8 @@
 #include <vtkTrivialProducer.h>
 #include <vtkXMLImageDataWriter.h>
 
+#include "FileTestFixture.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -278,27 +280,9 @@ void ExpectWholeVolumeSurface(const Surface& slabs, vtkImageData* image, double 
   }
 }
 
-class VolumeSource : public ::testing::Test
+class VolumeSource : public FileTestFixture
 {
 protected:
-  void SetUp() override
-  {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    this->Dir = fs::temp_directory_path() /
-      ("atp-volume-test-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(this->Dir);
-    fs::create_directories(this->Dir);
-  }
-  void TearDown() override { fs::remove_all(this->Dir); }
-
-  std::string Path(const std::string& name) const { return (this->Dir / name).string(); }
-
-  std::string Write(const std::string& name, const std::string& bytes) const
-  {
-    std::ofstream(this->Path(name), std::ios::binary) << bytes;
-    return this->Path(name);
-  }
-
   /// Opens `path` and contours it, expecting an InputError naming the file and `problem`.
   void ExpectError(const std::string& path, const std::string& problem, double iso = 0.5,
     const atp::RawVolumeLayout* raw = nullptr) const
@@ -324,7 +308,6 @@ protected:
     }
   }
 
-  fs::path Dir;
 };
 
 // ---------------------------------------------------------------------------------------------
