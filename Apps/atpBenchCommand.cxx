@@ -11,7 +11,7 @@
 #include "atpProgressReport.h"
 #include "atpRenderStatistics.h"
 #include "atpTriangleSource.h"
-#include "atpVtkErrors.h"
+#include "atpFirstVtkError.h"
 #include "atpWindowImage.h"
 #include "vtkATPMapper.h"
 #include "vtkATPModel.h"

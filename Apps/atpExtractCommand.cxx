@@ -4,7 +4,7 @@
 #include "atpModelFile.h"
 #include "atpPendingFile.h"
 #include "atpTriangleSource.h"
-#include "atpVtkErrors.h"
+#include "atpFirstVtkError.h"
 #include "vtkATPExtractCut.h"
 #include "vtkATPModel.h"
 

@@ -1,7 +1,7 @@
 #include "atpPngFile.h"
 
 #include "atpPendingFile.h"
-#include "atpVtkErrors.h"
+#include "atpFirstVtkError.h"
 
 #include "vtkErrorCode.h"
 #include "vtkImageData.h"

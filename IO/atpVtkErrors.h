@@ -3,6 +3,8 @@
 #ifndef atpVtkErrors_h
 #define atpVtkErrors_h
 
+#include "atpVtkErrorMessage.h"
+
 #include <vtkCommand.h>
 
 #include <string>
@@ -21,15 +23,7 @@ public:
     if ((event == vtkCommand::ErrorEvent || event == vtkCommand::WarningEvent) && callData &&
       this->FirstError.empty())
     {
-      // VTK's text is "ERROR: In <source>, line <n>\n<class> (<address>): <message>\n":
-      // keep the message.
-      std::string text = static_cast<const char*>(callData);
-      while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
-      {
-        text.pop_back();
-      }
-      const std::size_t prefix = text.rfind("): ");
-      this->FirstError = prefix == std::string::npos ? text : text.substr(prefix + 3);
+      this->FirstError = VtkErrorMessage(static_cast<const char*>(callData));
     }
   }
 

@@ -1,22 +1,11 @@
 #include "atpErrorCapture.h"
+#include "atpVtkErrorMessage.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 
 namespace atp
 {
-
-std::string ErrorEventMessage(const void* callData)
-{
-  std::string text = static_cast<const char*>(callData);
-  const std::size_t object = text.find("): ");
-  if (object != std::string::npos)
-  {
-    text = text.substr(object + 3);
-  }
-  text.erase(text.find_last_not_of('\n') + 1);
-  return text;
-}
 
 ErrorCapture::ErrorCapture(const std::vector<vtkObject*>& objects)
 {
@@ -25,7 +14,7 @@ ErrorCapture::ErrorCapture(const std::vector<vtkObject*>& objects)
     auto* self = static_cast<ErrorCapture*>(client);
     if (self->First.empty())
     {
-      self->First = ErrorEventMessage(call);
+      self->First = VtkErrorMessage(static_cast<const char*>(call));
     }
   });
   for (vtkObject* object : objects)

@@ -15,9 +15,6 @@ class vtkObject;
 namespace atp
 {
 
-/// The message of a VTK error event's text ("ERROR: In FILE, line N\nCLASS (ADDRESS): MESSAGE").
-std::string ErrorEventMessage(const void* callData);
-
 class ErrorCapture
 {
 public:

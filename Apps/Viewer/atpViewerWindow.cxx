@@ -1,6 +1,7 @@
 #include "atpViewerWindow.h"
 
 #include "atpErrorCapture.h"
+#include "atpVtkErrorMessage.h"
 #include "atpModelBuild.h"
 #include "atpVolumeSlabs.h"
 #include "atpPropertiesPanel.h"
@@ -105,7 +106,7 @@ ViewerWindow::ViewerWindow(QWidget* parent)
   onMapperError->SetClientData(this);
   onMapperError->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
     static_cast<ViewerWindow*>(client)->statusBar()->showMessage(
-      QString::fromStdString(ErrorEventMessage(call)));
+      QString::fromStdString(VtkErrorMessage(static_cast<const char*>(call))));
   });
   ModelMapper->AddObserver(vtkCommand::ErrorEvent, onMapperError);
 }

@@ -1,4 +1,5 @@
-#include "atpVtkErrors.h"
+#include "atpFirstVtkError.h"
+#include "atpVtkErrorMessage.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkCommand.h"
@@ -16,16 +17,9 @@ void Record(vtkObject*, unsigned long, void* self, void* message)
   {
     return;
   }
-  // VTK's text: "ERROR: In file, line N\nvtkClass (0x...): what went wrong".
-  std::string text = static_cast<const char*>(message);
-  while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
-  {
-    text.pop_back();
-  }
-  const std::size_t line = text.find('\n') + 1; // 0 when there is one line
-  const std::size_t object = text.find("): ", line);
-  first->Message = object == std::string::npos ? text : text.substr(object + 3);
-  first->Message = first->Message.substr(0, first->Message.find('\n'));
+  // One line for the command line.
+  const std::string text = VtkErrorMessage(static_cast<const char*>(message));
+  first->Message = text.substr(0, text.find('\n'));
 }
 
 void Ignore(vtkObject*, unsigned long, void*, void*) {}

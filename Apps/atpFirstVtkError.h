@@ -1,7 +1,7 @@
 // VTK errors as one line for the command line: the first message of the observed objects,
 // instead of VTK's output window.
-#ifndef atpVtkErrors_h
-#define atpVtkErrors_h
+#ifndef atpFirstVtkError_h
+#define atpFirstVtkError_h
 
 #include "vtkCallbackCommand.h"
 #include "vtkNew.h"
