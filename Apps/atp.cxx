@@ -132,7 +132,7 @@ int Build(int argc, char** argv, atp::MpiJobRunner* workers)
   cl.AddOption("origin", "", "OX,OY,OZ", "raw volumes: position of the first voxel", "0,0,0");
   cl.AddFlag("big-endian", "raw volumes: voxels are big-endian (default little-endian)");
   cl.AddOption("leaf-capacity", "", "N", "most triangles in a leaf tetrahedron", "4000");
-  cl.AddOption("patch-budget", "", "N", "most triangles in a tetrahedron of a simplified level",
+  cl.AddOption("patch-budget", "", "N", "most triangles in a tetrahedron of a simplified level (it also keeps at most half of its children's)",
     "2000");
   cl.AddOption("threads", "j", "N", "worker threads (the model is identical for any count)",
     "every core");
@@ -232,7 +232,7 @@ int Build(int argc, char** argv, atp::MpiJobRunner* workers)
     double(p.Buckets.BytesWritten) / (1 << 20), double(p.Buckets.BytesRead) / (1 << 20),
     double(p.Buckets.PeakScratchBytes) / (1 << 20));
   const atp::ConstructionStats& c = builder->GetConstructionStats();
-  std::printf("simplify: %llu diamonds, %s collapses, %llu over budget (locked), coarsest error "
+  std::printf("simplify: %llu diamonds, %s collapses, %llu over quota (locked), coarsest error "
               "%.3g, %.2fs\n",
     static_cast<unsigned long long>(c.Diamonds), FormatCount(double(c.Collapses)).c_str(),
     static_cast<unsigned long long>(c.QuotaMisses), c.CoarsestError,

@@ -35,7 +35,7 @@ struct ConstructionStats
   std::uint64_t Diamonds = 0;          ///< simplified diamonds
   std::uint64_t StoredTriangles = 0;   ///< over all levels
   std::uint64_t Collapses = 0;
-  /// Diamonds where locked geometry kept a member above the patch budget (kept, not fatal).
+  /// Diamonds where locked geometry kept a member above its quota (kept, not fatal).
   std::uint64_t QuotaMisses = 0;
   std::uint64_t PatchBytes = 0;        ///< encoded patches
   std::uint64_t FileBytes = 0;

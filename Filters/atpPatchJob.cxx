@@ -6,6 +6,7 @@
 #include "atpPatchCodec.h"
 #include "atpSimplifier.h"
 
+#include <algorithm>
 #include <numeric>
 
 namespace atp
@@ -15,11 +16,10 @@ namespace
 
 /// Leaves keep every position bit; a simplified patch stores its interior on the coarsest
 /// power-of-two grid whose rounding stays a small fraction of its error (the border keeps the
-/// full grid, see PatchPrecision). Normals lose 4 of 16 bits inside patches (0.06 degrees).
+/// full grid, see PatchPrecision).
 PatchPrecision PrecisionFor(const QuantizationGrid& grid, double error)
 {
   PatchPrecision precision;
-  precision.InteriorNormalShift = 4;
   constexpr double ShareOfError = 1.0 / 32;
   PatchPrecision coarser = precision;
   while (++coarser.InteriorPositionShift < QuantizationGrid::Bits &&
@@ -78,6 +78,26 @@ PatchJobResult MakeLeafPatch(const PatchJobContext& context, const PatchJob& job
   return result;
 }
 
+/// A member keeps at most the budget, and at most half of what its two children hold: every
+/// level then halves the triangles, as one bisection halves the volume, also where the leaves
+/// are far below the budget (a level that kept 3/4 of its children's triangles would cost
+/// nearly a copy of the finer level in the file and be drawn almost never).
+std::vector<std::uint32_t> MemberQuotas(const PatchJob& job, std::uint32_t budget)
+{
+  const std::size_t childrenPerMember = job.Children.size() / job.Members.size();
+  std::vector<std::uint32_t> quotas(job.Members.size());
+  for (std::size_t m = 0; m < quotas.size(); ++m)
+  {
+    std::size_t children = 0;
+    for (std::size_t c = 0; c < childrenPerMember; ++c)
+    {
+      children += job.Children[childrenPerMember * m + c].TriangleCount();
+    }
+    quotas[m] = std::uint32_t(std::min<std::size_t>(budget, (children + 1) / 2));
+  }
+  return quotas;
+}
+
 /// Merges the children's patches and simplifies them with the diamond's external boundary
 /// locked and one quota per member.
 PatchJobResult SimplifyDiamond(const PatchJobContext& context, PatchJob& job)
@@ -87,10 +107,10 @@ PatchJobResult SimplifyDiamond(const PatchJobContext& context, PatchJob& job)
   {
     parts.push_back(&c);
   }
+  const std::vector<std::uint32_t> quotas = MemberQuotas(job, context.PatchBudget);
   const PatchMesh merged = MergePatches(parts);
   job.Children.clear(); // one copy of the diamond in memory while it simplifies
   const MemberLocator locator(job.Members, context.Frame);
-  const std::vector<std::uint32_t> quotas(job.Members.size(), context.PatchBudget);
   SimplifyResult simplified = Simplify(merged, int(job.Members.size()),
     [&locator](const double p[3]) { return locator.MemberOf(p); }, quotas);
   // The merged input was already off the original by up to its children's error; storing

@@ -9,8 +9,8 @@
  * FileName (.atp), like a vtkWriter. The triangles are partitioned out of core into a forest of
  * tetrahedra (longest-edge bisection, 6 roots): each triangle goes to the leaf holding its
  * centroid and a leaf with more than LeafCapacity triangles splits with its whole diamond. Then,
- * bottom-up, every diamond simplifies its children's patches to PatchBudget triangles per
- * member with its external boundary locked, and errors, spheres and normal cones are saturated.
+ * bottom-up, every diamond simplifies its children's patches to at most PatchBudget triangles
+ * per member, and at most half of the member's children's, with its external boundary locked, and errors, spheres and normal cones are saturated.
  * Progress events report the fraction done; GetProgressText() names the phase.
  *
  * Build() runs the pipeline and returns 1 on success; on failure it returns 0, reports a

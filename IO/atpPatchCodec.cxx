@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 
@@ -18,6 +19,8 @@ namespace
 constexpr std::size_t PositionStride = 3 * sizeof(std::uint32_t);
 constexpr std::size_t NormalStride = 2 * sizeof(std::int16_t);
 constexpr std::size_t ColorStride = 4;
+/// Normals are stored with NormalBits = 16 - NormalShift bits per octahedral coordinate.
+constexpr int NormalShift = 16 - NormalBits;
 // meshopt's index codec: a header byte, at least one code byte per triangle, a 16-byte tail.
 constexpr std::uint64_t IndexStreamOverhead = 17;
 // meshopt's vertex codec spends at least 2 bits per 16 vertices on each byte of a vertex.
@@ -259,11 +262,20 @@ std::uint32_t RoundToMultiple(std::uint32_t value, int shift, std::uint32_t limi
   return static_cast<std::uint32_t>(rounded);
 }
 
-std::int16_t RoundNormal(std::int16_t value, int shift)
+/// An octahedral coordinate (EncodeNormal's 16 bits) on the stream's coarser scale, rounded
+/// half away from zero: -1024..1024.
+std::int16_t StoredNormal(std::int16_t value)
 {
-  const int step = 1 << shift;
-  const int rounded = ((int(value) + 32768 + step / 2) & ~(step - 1)) - 32768;
-  return static_cast<std::int16_t>(std::min(32767, std::max(-32767, rounded)));
+  constexpr int half = 1 << (NormalShift - 1);
+  const int magnitude = (std::abs(int(value)) + half) >> NormalShift;
+  return static_cast<std::int16_t>(value < 0 ? -magnitude : magnitude);
+}
+
+/// Back to EncodeNormal's scale (1024 << 5 is one past 32767: DecodeNormal's range ends there).
+std::int16_t UnstoredNormal(std::int16_t stored)
+{
+  const int value = int(stored) * (1 << NormalShift);
+  return static_cast<std::int16_t>(std::min(32767, std::max(-32767, value)));
 }
 } // namespace
 
@@ -279,8 +291,7 @@ std::vector<std::uint8_t> EncodePatch(
   const PatchMesh& mesh, const QuantizationGrid& grid, const PatchPrecision& precision)
 {
   CheckMesh(mesh);
-  if (precision.InteriorPositionShift < 0 || precision.InteriorPositionShift >= QuantizationGrid::Bits ||
-    precision.InteriorNormalShift < 0 || precision.InteriorNormalShift > 12)
+  if (precision.InteriorPositionShift < 0 || precision.InteriorPositionShift >= QuantizationGrid::Bits)
   {
     throw std::invalid_argument("EncodePatch: precision out of range");
   }
@@ -349,12 +360,9 @@ std::vector<std::uint8_t> EncodePatch(
       header.Min[a] = std::min(header.Min[a], positions[3 * to + a]);
     }
     EncodeNormal(&mesh.Normals[3 * v], &normals[2 * to]);
-    if (!border[v])
+    for (int k = 0; k < 2; ++k)
     {
-      for (int k = 0; k < 2; ++k)
-      {
-        normals[2 * to + k] = RoundNormal(normals[2 * to + k], precision.InteriorNormalShift);
-      }
+      normals[2 * to + k] = StoredNormal(normals[2 * to + k]);
     }
     if (mesh.HasColors())
     {
@@ -368,6 +376,10 @@ std::vector<std::uint8_t> EncodePatch(
 
   header.VertexCount = static_cast<std::uint32_t>(used);
   header.TriangleCount = static_cast<std::uint32_t>(indexCount / 3);
+  // Version 1 of meshopt's index codec (decoded by 0.14 and later) also codes the third
+  // index of a triangle against the one before: smaller streams than the library's default 0.
+  static const bool indexVersion1 = (meshopt_encodeIndexVersion(1), true);
+  (void)indexVersion1;
   out.resize(PatchHeaderBytes + meshopt_encodeIndexBufferBound(indexCount, used));
   const std::size_t indexBytes = meshopt_encodeIndexBuffer(
     out.data() + PatchHeaderBytes, out.size() - PatchHeaderBytes, indices.data(), indexCount);
@@ -453,6 +465,10 @@ void DecodePatch(
   {
     std::int16_t octahedral[2];
     std::memcpy(octahedral, packed + NormalStride * v, sizeof(octahedral));
+    for (std::int16_t& o : octahedral)
+    {
+      o = UnstoredNormal(o);
+    }
     DecodeNormal(octahedral, &out.Normals[3 * v]);
   }
 

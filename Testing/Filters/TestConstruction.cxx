@@ -365,6 +365,25 @@ TEST_F(Construction, QuotasAreMetAndLevelsCoarsen)
     }
   }
   EXPECT_EQ(leafTriangles, h.InputTriangles);
+  // A member keeps at most half of its children's triangles (the leaves here hold far less
+  // than the budget, so the budget alone would keep most of them), but for the few members
+  // whose locked borders keep them above it.
+  std::uint64_t inner = 0, innerChildren = 0, aboveHalf = 0;
+  for (std::uint32_t i = 0; i < model.NodeCount(); ++i)
+  {
+    const atp::ModelNode& n = model.Node(i);
+    if (n.Children[0] >= 0)
+    {
+      const std::uint64_t children =
+        model.Node(std::size_t(n.Children[0])).TriangleCount + model.Node(std::size_t(n.Children[1])).TriangleCount;
+      inner += n.TriangleCount;
+      innerChildren += children;
+      aboveHalf += n.TriangleCount > (children + 1) / 2;
+    }
+  }
+  std::printf("inner nodes keep %.3f of their children's triangles; %llu of them above half\n",
+    double(inner) / double(innerChildren), static_cast<unsigned long long>(aboveHalf));
+  EXPECT_LE(double(inner), 0.55 * double(innerChildren));
   std::size_t previous = SIZE_MAX;
   for (int level = int(h.Depth); level >= 0; level -= 3)
   {
