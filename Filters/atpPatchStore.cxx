@@ -1,5 +1,7 @@
 #include "atpPatchStore.h"
 
+#include "atpNormalEncoding.h"
+
 #include <cstring>
 #include <vector>
 
@@ -15,15 +17,17 @@ struct Counts
   std::uint32_t Padding;
 };
 
+/// Patches of fewer vertices store 16-bit indices.
+constexpr std::size_t ShortIndexVertices = std::size_t(1) << 16;
+
 template<typename T>
-void Append(std::vector<std::uint8_t>& bytes, const std::vector<T>& values)
+std::uint8_t* Copy(std::uint8_t* to, const T* values, std::size_t count)
 {
-  const std::size_t at = bytes.size();
-  bytes.resize(at + values.size() * sizeof(T));
-  if (!values.empty())
+  if (count > 0)
   {
-    std::memcpy(bytes.data() + at, values.data(), values.size() * sizeof(T));
+    std::memcpy(to, values, count * sizeof(T));
   }
+  return to + count * sizeof(T);
 }
 
 template<typename T>
@@ -43,17 +47,36 @@ PatchStore::PatchStore(const std::string& scratchDirectory)
 {
 }
 
+// The record: counts, positions, normals as EncodeNormal's 2 x int16 (every normal here was
+// decoded from that encoding, and decoding what it encodes gives the same floats: lossless at a
+// third of the bytes), colors, indices (16 bits when they fit), boundary bits.
 PatchStore::Handle PatchStore::Put(const PatchMesh& patch)
 {
-  const Counts counts{ std::uint32_t(patch.VertexCount()), std::uint32_t(patch.TriangleCount()),
+  const std::size_t vertices = patch.VertexCount(), indices = patch.Indices.size();
+  const bool shortIndices = vertices <= ShortIndexVertices;
+  const Counts counts{ std::uint32_t(vertices), std::uint32_t(patch.TriangleCount()),
     std::uint32_t(patch.HasColors()), 0 };
-  std::vector<std::uint8_t> bytes(sizeof(counts));
-  std::memcpy(bytes.data(), &counts, sizeof(counts));
-  Append(bytes, patch.Positions);
-  Append(bytes, patch.Normals);
-  Append(bytes, patch.Colors);
-  Append(bytes, patch.Indices);
-  Append(bytes, patch.BoundaryEdges);
+  std::vector<std::uint8_t> bytes(sizeof(counts) + vertices * (3 * sizeof(float) + 4) +
+    patch.Colors.size() + indices * (shortIndices ? 2 : 4) + patch.BoundaryEdges.size());
+  std::uint8_t* at = Copy(bytes.data(), &counts, 1);
+  at = Copy(at, patch.Positions.data(), patch.Positions.size());
+  std::vector<std::int16_t> normals(2 * vertices);
+  for (std::size_t v = 0; v < vertices; ++v)
+  {
+    EncodeNormal(&patch.Normals[3 * v], &normals[2 * v]);
+  }
+  at = Copy(at, normals.data(), normals.size());
+  at = Copy(at, patch.Colors.data(), patch.Colors.size());
+  if (shortIndices)
+  {
+    const std::vector<std::uint16_t> narrow(patch.Indices.begin(), patch.Indices.end());
+    at = Copy(at, narrow.data(), narrow.size());
+  }
+  else
+  {
+    at = Copy(at, patch.Indices.data(), indices);
+  }
+  Copy(at, patch.BoundaryEdges.data(), patch.BoundaryEdges.size());
   const Handle handle{ End, bytes.size() };
   File.WriteAt(End, bytes.data(), bytes.size());
   End += bytes.size();
@@ -68,11 +91,27 @@ void PatchStore::Get(const Handle& handle, PatchMesh& out) const
   File.ReadAt(handle.Offset, bytes.data(), bytes.size());
   Counts counts;
   std::memcpy(&counts, bytes.data(), sizeof(counts));
+  const std::size_t vertices = counts.Vertices, indices = 3 * std::size_t(counts.Triangles);
   const std::uint8_t* at = bytes.data() + sizeof(counts);
-  at = Take(at, 3 * std::size_t(counts.Vertices), out.Positions);
-  at = Take(at, 3 * std::size_t(counts.Vertices), out.Normals);
-  at = Take(at, counts.HasColors ? 4 * std::size_t(counts.Vertices) : 0, out.Colors);
-  at = Take(at, 3 * std::size_t(counts.Triangles), out.Indices);
+  at = Take(at, 3 * vertices, out.Positions);
+  std::vector<std::int16_t> normals;
+  at = Take(at, 2 * vertices, normals);
+  out.Normals.resize(3 * vertices);
+  for (std::size_t v = 0; v < vertices; ++v)
+  {
+    DecodeNormal(&normals[2 * v], &out.Normals[3 * v]);
+  }
+  at = Take(at, counts.HasColors ? 4 * vertices : 0, out.Colors);
+  if (vertices <= ShortIndexVertices)
+  {
+    std::vector<std::uint16_t> narrow;
+    at = Take(at, indices, narrow);
+    out.Indices.assign(narrow.begin(), narrow.end());
+  }
+  else
+  {
+    at = Take(at, indices, out.Indices);
+  }
   Take(at, std::size_t(counts.Triangles), out.BoundaryEdges);
 }
 
