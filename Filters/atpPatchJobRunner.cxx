@@ -22,26 +22,22 @@ public:
 
   void Run(std::size_t count, const LoadJob& load, const StoreResult& store) override
   {
-    // A chunk big enough to keep every thread busy, small enough to bound memory.
-    const std::size_t chunk = std::size_t(Threads) * 4;
-    std::vector<PatchJob> jobs;
-    std::vector<PatchJobResult> results;
-    for (std::size_t first = 0; first < count; first += chunk)
-    {
-      const std::size_t size = std::min(chunk, count - first);
-      jobs.assign(size, PatchJob());
-      results.assign(size, PatchJobResult());
-      for (std::size_t i = 0; i < size; ++i)
-      {
-        load(first + i, jobs[i]);
-      }
-      ParallelFor(size, Threads,
-        [&](std::size_t i) { results[i] = MakePatches(*Context, std::move(jobs[i])); });
-      for (std::size_t i = 0; i < size; ++i)
-      {
-        store(first + i, results[i]);
-      }
-    }
+    // Enough jobs in flight to keep every thread busy while the caller reads and writes, few
+    // enough to bound memory.
+    const std::size_t window = std::size_t(Threads) * 4;
+    std::vector<PatchJob> jobs(window);
+    std::vector<PatchJobResult> results(window);
+    OrderedPipeline(
+      count, Threads, window,
+      [&](std::size_t i) {
+        jobs[i % window] = PatchJob();
+        load(i, jobs[i % window]);
+      },
+      [&](std::size_t i) { results[i % window] = MakePatches(*Context, std::move(jobs[i % window])); },
+      [&](std::size_t i) {
+        store(i, results[i % window]);
+        results[i % window] = PatchJobResult();
+      });
   }
 
 private:

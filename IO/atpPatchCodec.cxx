@@ -214,34 +214,44 @@ void CheckMesh(const PatchMesh& mesh)
     }
   }
 }
-/// Per vertex: whether it lies on an edge used by exactly one triangle of the patch.
+/// Per vertex: whether it lies on an edge used by exactly one triangle of the patch. Edges are
+/// grouped by their smaller vertex with a counting sort (linear; each group holds a handful).
 std::vector<bool> BorderVertices(const std::vector<std::uint32_t>& indices, std::size_t vertexCount)
 {
-  std::vector<std::uint64_t> edges;
-  edges.reserve(indices.size());
-  for (std::size_t t = 0; t < indices.size(); t += 3)
-  {
-    for (int c = 0; c < 3; ++c)
+  std::vector<std::uint32_t> groupStart(vertexCount + 1, 0);
+  const auto forEachEdge = [&indices](const auto& visit) {
+    for (std::size_t t = 0; t < indices.size(); t += 3)
     {
-      const std::uint64_t a = indices[t + c], b = indices[t + (c + 1) % 3];
-      edges.push_back(std::min(a, b) << 32 | std::max(a, b));
+      for (int c = 0; c < 3; ++c)
+      {
+        const std::uint32_t a = indices[t + c], b = indices[t + (c + 1) % 3];
+        visit(std::min(a, b), std::max(a, b));
+      }
     }
+  };
+  forEachEdge([&](std::uint32_t low, std::uint32_t) { ++groupStart[low + 1]; });
+  for (std::size_t v = 0; v < vertexCount; ++v)
+  {
+    groupStart[v + 1] += groupStart[v];
   }
-  std::sort(edges.begin(), edges.end());
+  std::vector<std::uint32_t> high(indices.size());
+  std::vector<std::uint32_t> fill(groupStart.begin(), groupStart.end() - 1);
+  forEachEdge([&](std::uint32_t low, std::uint32_t other) { high[fill[low]++] = other; });
   std::vector<bool> border(vertexCount, false);
-  for (std::size_t i = 0; i < edges.size();)
+  for (std::uint32_t low = 0; low < vertexCount; ++low)
   {
-    std::size_t j = i + 1;
-    while (j < edges.size() && edges[j] == edges[i])
+    const auto first = high.begin() + groupStart[low], last = high.begin() + groupStart[low + 1];
+    std::sort(first, last);
+    for (auto at = first; at != last;)
     {
-      ++j;
+      const auto next = std::find_if(at, last, [&at](std::uint32_t x) { return x != *at; });
+      if (next - at == 1)
+      {
+        border[low] = true;
+        border[*at] = true;
+      }
+      at = next;
     }
-    if (j - i == 1)
-    {
-      border[edges[i] >> 32] = true;
-      border[edges[i] & 0xffffffffu] = true;
-    }
-    i = j;
   }
   return border;
 }
