@@ -1,25 +1,61 @@
 #include "atpBucketStore.h"
 
 #include <algorithm>
+#include <iterator>
 #include <cstring>
 #include <stdexcept>
 
 namespace atp
 {
 
-BucketStore::BucketStore(
-  const std::string& scratchDirectory, std::size_t memoryBudgetBytes, std::size_t recordBytes)
-  : Disk(scratchDirectory)
-  , RecordBytes(recordBytes)
-  , PageBytes(PageRecords * recordBytes)
+namespace
 {
-  if (recordBytes != sizeof(SoupTriangle) && recordBytes != SoupBytesWithoutColors)
+// A page: u16 corner count, u16 triangle count, the corners from the front, the triangles
+// (3 x u16 corner numbers, u8 boundary bits) from the back.
+constexpr std::size_t PageHeaderBytes = 4;
+constexpr std::size_t TriangleBytes = 7;
+constexpr std::size_t PositionNormalBytes = 3 * sizeof(float) + 2 * sizeof(std::int16_t);
+/// Corners of a page, at most: the page full of corners alone.
+constexpr std::size_t MaxPageCorners = BucketStore::PageBytes / PositionNormalBytes;
+/// Slots of a frame's corner table: a power of two at least twice the corners.
+constexpr std::size_t CornerTableSlots = 2048;
+static_assert(CornerTableSlots >= 2 * MaxPageCorners, "corner table load at most 1/2");
+
+std::uint16_t GetU16(const unsigned char* p)
+{
+  std::uint16_t v;
+  std::memcpy(&v, p, sizeof(v));
+  return v;
+}
+
+void PutU16(unsigned char* p, std::uint16_t v)
+{
+  std::memcpy(p, &v, sizeof(v));
+}
+
+std::size_t HashCorner(const unsigned char* corner, std::size_t bytes)
+{
+  std::uint64_t h = 0x9E3779B97F4A7C15ull;
+  for (std::size_t at = 0; at + 4 <= bytes; at += 4)
   {
-    throw std::invalid_argument("BucketStore: unsupported record size");
+    std::uint32_t word;
+    std::memcpy(&word, corner + at, sizeof(word));
+    h = (h ^ word) * 0xFF51AFD7ED558CCDull;
   }
+  return std::size_t(h ^ (h >> 29));
+}
+} // namespace
+
+BucketStore::BucketStore(const std::string& scratchDirectory, std::size_t memoryBudgetBytes, bool colors)
+  : Disk(scratchDirectory)
+  , CornerBytes(PositionNormalBytes + (colors ? 4 : 0))
+{
   // At least a handful of frames so that a split (one bucket read, two appended) always fits.
-  const std::size_t frames = std::max<std::size_t>(8, memoryBudgetBytes / PageBytes);
+  const std::size_t frameBytes = PageBytes + CornerTableSlots * sizeof(std::uint16_t);
+  const std::size_t frames = std::max<std::size_t>(8, memoryBudgetBytes / frameBytes);
   Pool.reset(new unsigned char[frames * PageBytes]);
+  CornerTables.reset(new std::uint16_t[frames * CornerTableSlots]);
+  CornersIndexed.assign(frames, 0);
   States.assign(frames, FrameState::Free);
   FramePage.assign(frames, -1);
   FrameDirty.assign(frames, 0);
@@ -160,11 +196,98 @@ std::size_t BucketStore::Resident(PageIndex page, bool load)
     Disk.ReadAt(std::uint64_t(page) * PageBytes, FrameData(frame), PageBytes);
     Counters.BytesRead += PageBytes;
   }
+  if (!load || !PageOnDisk[page])
+  {
+    PutU16(FrameData(frame), 0); // a new page: no corners,
+    PutU16(FrameData(frame) + 2, 0); // no triangles
+  }
   States[frame] = FrameState::Resident;
   FramePage[frame] = page;
   FrameDirty[frame] = 0;
+  CornersIndexed[frame] = 0;
   PageFrame[page] = std::int32_t(frame);
   return frame;
+}
+
+void BucketStore::IndexCorners(std::size_t frame)
+{
+  std::uint16_t* table = &CornerTables[frame * CornerTableSlots];
+  std::fill(table, table + CornerTableSlots, std::uint16_t(0));
+  const unsigned char* page = FrameData(frame);
+  const std::size_t corners = GetU16(page);
+  for (std::size_t c = 0; c < corners; ++c)
+  {
+    const unsigned char* corner = page + PageHeaderBytes + c * CornerBytes;
+    std::size_t slot = HashCorner(corner, CornerBytes) & (CornerTableSlots - 1);
+    while (table[slot] != 0)
+    {
+      slot = (slot + 1) & (CornerTableSlots - 1);
+    }
+    table[slot] = std::uint16_t(c + 1);
+  }
+  CornersIndexed[frame] = 1;
+}
+
+int BucketStore::CornerIndex(std::size_t frame, const unsigned char* corner)
+{
+  unsigned char* page = FrameData(frame);
+  std::uint16_t* table = &CornerTables[frame * CornerTableSlots];
+  std::size_t slot = HashCorner(corner, CornerBytes) & (CornerTableSlots - 1);
+  for (; table[slot] != 0; slot = (slot + 1) & (CornerTableSlots - 1))
+  {
+    const std::size_t c = table[slot] - 1u;
+    if (std::memcmp(page + PageHeaderBytes + c * CornerBytes, corner, CornerBytes) == 0)
+    {
+      return int(c);
+    }
+  }
+  const std::size_t corners = GetU16(page), triangles = GetU16(page + 2);
+  // Room for this corner and the triangle that uses it (counted before its corners go in).
+  if (PageHeaderBytes + (corners + 1) * CornerBytes + (triangles + 1) * TriangleBytes > PageBytes)
+  {
+    return -1;
+  }
+  std::memcpy(page + PageHeaderBytes + corners * CornerBytes, corner, CornerBytes);
+  PutU16(page, std::uint16_t(corners + 1));
+  table[slot] = std::uint16_t(corners + 1);
+  return int(corners);
+}
+
+bool BucketStore::AddToPage(std::size_t frame, const SoupTriangle& triangle)
+{
+  if (!CornersIndexed[frame])
+  {
+    IndexCorners(frame);
+  }
+  unsigned char* page = FrameData(frame);
+  const std::uint16_t cornersBefore = GetU16(page);
+  const std::uint16_t triangles = GetU16(page + 2);
+  if (PageHeaderBytes + cornersBefore * CornerBytes + (triangles + 1u) * TriangleBytes > PageBytes)
+  {
+    return false; // not even room for a triangle of known corners
+  }
+  std::uint16_t numbers[3];
+  for (int k = 0; k < 3; ++k)
+  {
+    unsigned char corner[PositionNormalBytes + 4];
+    std::memcpy(corner, triangle.V[k], 3 * sizeof(float));
+    std::memcpy(corner + 3 * sizeof(float), triangle.Normals[k], 2 * sizeof(std::int16_t));
+    std::memcpy(corner + PositionNormalBytes, triangle.Colors[k], CornerBytes - PositionNormalBytes);
+    const int number = CornerIndex(frame, corner);
+    if (number < 0)
+    {
+      // Full: forget the corners this triangle added, it goes to a new page.
+      PutU16(page, cornersBefore);
+      CornersIndexed[frame] = 0;
+      return false;
+    }
+    numbers[k] = std::uint16_t(number);
+  }
+  unsigned char* record = page + PageBytes - (std::size_t(triangles) + 1) * TriangleBytes;
+  std::memcpy(record, numbers, sizeof(numbers));
+  record[6] = triangle.BoundaryEdges;
+  PutU16(page + 2, std::uint16_t(triangles + 1));
+  return true;
 }
 
 void BucketStore::Append(BucketIndex bucketIndex, const SoupTriangle& triangle)
@@ -174,19 +297,14 @@ void BucketStore::Append(BucketIndex bucketIndex, const SoupTriangle& triangle)
     Buckets.resize(std::size_t(bucketIndex) + 1);
   }
   Bucket& bucket = Buckets[bucketIndex];
-  const std::size_t slot = std::size_t(bucket.Count % PageRecords);
-  std::size_t frame;
-  if (slot == 0)
+  std::size_t frame = bucket.Pages.empty() ? 0 : Resident(bucket.Pages.back(), true);
+  if (bucket.Pages.empty() || !AddToPage(frame, triangle))
   {
     const PageIndex page = NewPage();
     bucket.Pages.push_back(page);
     frame = Resident(page, false);
+    AddToPage(frame, triangle); // an empty page holds any triangle
   }
-  else
-  {
-    frame = Resident(bucket.Pages.back(), true);
-  }
-  std::memcpy(FrameData(frame) + slot * RecordBytes, &triangle, RecordBytes);
   FrameDirty[frame] = 1;
   FrameReferenced[frame] = 1;
   ++bucket.Count;
@@ -199,38 +317,52 @@ void BucketStore::Read(BucketIndex bucketIndex, std::vector<SoupTriangle>& out) 
     return;
   }
   const Bucket& bucket = Buckets[bucketIndex];
-  std::size_t first = out.size();
-  out.resize(first + bucket.Count);
-  std::uint64_t left = bucket.Count;
+  out.reserve(out.size() + bucket.Count);
+  std::vector<unsigned char> buffer;
   for (const PageIndex page : bucket.Pages)
   {
-    const std::size_t n = std::size_t(std::min<std::uint64_t>(left, PageRecords));
     if (PageFrame[page] != NotResident)
     {
       // Also for a frame being written: the writer only reads it too.
-      Unpack(FrameData(std::size_t(PageFrame[page])), n, &out[first]);
+      Unpack(FrameData(std::size_t(PageFrame[page])), out);
     }
     else
     {
-      // Packed records are never longer than SoupTriangles: read them into place, then spread.
-      unsigned char* packed = reinterpret_cast<unsigned char*>(&out[first]);
-      Disk.ReadAt(std::uint64_t(page) * PageBytes, packed, n * RecordBytes);
-      Counters.BytesRead += n * RecordBytes;
-      Unpack(packed, n, &out[first]);
+      buffer.resize(PageBytes);
+      Disk.ReadAt(std::uint64_t(page) * PageBytes, buffer.data(), PageBytes);
+      Counters.BytesRead += PageBytes;
+      Unpack(buffer.data(), out);
     }
-    first += n;
-    left -= n;
   }
 }
 
-void BucketStore::Unpack(const unsigned char* packed, std::size_t count, SoupTriangle* out) const
+void BucketStore::Unpack(const unsigned char* page, std::vector<SoupTriangle>& out) const
 {
-  // Backwards: a record's destination never overlaps a packed record not yet moved.
-  for (std::size_t i = count; i-- > 0;)
+  const std::size_t corners = GetU16(page), triangles = GetU16(page + 2);
+  if (PageHeaderBytes + corners * CornerBytes + triangles * TriangleBytes > PageBytes)
   {
-    unsigned char* to = reinterpret_cast<unsigned char*>(&out[i]);
-    std::memmove(to, packed + i * RecordBytes, RecordBytes);
-    std::memset(to + RecordBytes, 255, sizeof(SoupTriangle) - RecordBytes);
+    throw std::runtime_error("triangle bucket scratch file: a page reads back corrupt");
+  }
+  for (std::size_t t = 0; t < triangles; ++t)
+  {
+    const unsigned char* record = page + PageBytes - (t + 1) * TriangleBytes;
+    SoupTriangle triangle;
+    std::memset(&triangle, 255, sizeof(triangle)); // colors not kept read back opaque white
+    triangle.BoundaryEdges = record[6];
+    std::fill(std::begin(triangle.Padding), std::end(triangle.Padding), std::uint8_t(0));
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::size_t c = GetU16(record + 2 * k);
+      if (c >= corners)
+      {
+        throw std::runtime_error("triangle bucket scratch file: a page reads back corrupt");
+      }
+      const unsigned char* corner = page + PageHeaderBytes + c * CornerBytes;
+      std::memcpy(triangle.V[k], corner, 3 * sizeof(float));
+      std::memcpy(triangle.Normals[k], corner + 3 * sizeof(float), 2 * sizeof(std::int16_t));
+      std::memcpy(triangle.Colors[k], corner + PositionNormalBytes, CornerBytes - PositionNormalBytes);
+    }
+    out.push_back(triangle);
   }
 }
 

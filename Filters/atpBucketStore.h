@@ -3,6 +3,13 @@
 // secondary memory"). Pages of deleted buckets are reused, so the scratch file stays about the
 // size of the live triangles. Evicted pages are written in batches by a background thread
 // while the caller goes on filling other pages.
+//
+// A page is a small indexed mesh: the distinct corners (position, normal, color) of its
+// triangles, each stored once, and per triangle three 16-bit corner numbers and its boundary
+// bits. Triangles of one bucket come from one small region of a streamed mesh and share most
+// corners, so a page holds 3 to 4 times the triangles of a soup page (the paper's buckets
+// held raw triangles, about 3 times the input: it suggested compressed buckets). Reading gives
+// back the appended triangles bit for bit.
 #ifndef atpBucketStore_h
 #define atpBucketStore_h
 
@@ -29,14 +36,13 @@ class VTKATPFILTERS_EXPORT BucketStore
 {
 public:
   using BucketIndex = std::uint32_t;
-  // 256 records = 13 to 16 KiB: large sequential writes, and a bucket's last, partly filled
-  // page wastes little disk (leaves are many).
-  static constexpr std::size_t PageRecords = 256;
+  /// Large sequential writes, and a bucket's last, partly filled page wastes little disk
+  /// (leaves are many).
+  static constexpr std::size_t PageBytes = 16384;
 
-  /// `recordBytes`: sizeof(SoupTriangle), or SoupBytesWithoutColors for inputs without colors
-  /// (a fifth less disk and I/O; records read back get opaque white).
-  BucketStore(const std::string& scratchDirectory, std::size_t memoryBudgetBytes,
-    std::size_t recordBytes = sizeof(SoupTriangle));
+  /// `colors`: corners keep their colors (otherwise they read back opaque white, and a corner
+  /// takes a fifth less room).
+  BucketStore(const std::string& scratchDirectory, std::size_t memoryBudgetBytes, bool colors);
   /// Waits for the background writes (their errors are lost: the store is going away).
   ~BucketStore();
 
@@ -80,21 +86,31 @@ private:
   /// was evicted.
   std::size_t Resident(PageIndex page, bool load);
   std::size_t FreeFrame();
+  /// Adds the triangle to the page in `frame` if its new corners fit; false when full.
+  bool AddToPage(std::size_t frame, const SoupTriangle& triangle);
+  /// The corner's number in the page in `frame`, added if new; -1 when it does not fit.
+  int CornerIndex(std::size_t frame, const unsigned char* corner);
+  /// Fills in the corner lookup of the page in `frame` from its corners.
+  void IndexCorners(std::size_t frame);
+  /// Appends the triangles of one page to `out`.
+  void Unpack(const unsigned char* page, std::vector<SoupTriangle>& out) const;
   /// Picks not recently used frames: clean ones are freed now, dirty ones go to a new
   /// background write batch.
   void StartEvictions();
   /// Waits for the batch in flight, if any, and frees its frames.
   void FinishWrites();
   unsigned char* FrameData(std::size_t frame) const { return &Pool[frame * PageBytes]; }
-  /// Copies `count` packed records from `packed` to `out`; they may overlap at their starts.
-  void Unpack(const unsigned char* packed, std::size_t count, SoupTriangle* out) const;
 
   ScratchFile Disk;
   std::vector<Bucket> Buckets;
+  /// Bytes of one corner: position, normal, and color when kept.
+  const std::size_t CornerBytes;
   // Default-initialized: pages of the pool cost memory only once they are used.
-  const std::size_t RecordBytes;
-  const std::size_t PageBytes;
   std::unique_ptr<unsigned char[]> Pool;
+  /// Per frame, an open-addressing table from corner bytes to corner number + 1 (0: empty),
+  /// for appending; valid only when CornersIndexed.
+  std::unique_ptr<std::uint16_t[]> CornerTables;
+  std::vector<char> CornersIndexed;
   // Per frame: its state, the page it holds (or none), whether it changed since loaded, and
   // the clock's reference bit.
   std::vector<FrameState> States;

@@ -8,8 +8,7 @@ namespace atp
 Partitioner::Partitioner(const Box& bounds, const PartitionOptions& options)
   : Settings(options)
   , Lattice(bounds.Min.data(), bounds.Max.data())
-  , Buckets(options.ScratchDirectory, options.BucketMemoryBytes,
-      options.Colors ? sizeof(SoupTriangle) : SoupBytesWithoutColors)
+  , Buckets(options.ScratchDirectory, options.BucketMemoryBytes, options.Colors)
 {
   Settings.LeafCapacity = std::max<std::uint32_t>(1, Settings.LeafCapacity);
 }

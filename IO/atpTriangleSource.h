@@ -47,9 +47,6 @@ struct SoupTriangle
   std::uint8_t Colors[3][4];
 };
 static_assert(sizeof(SoupTriangle) == 64, "SoupTriangle is an on-disk record: keep it packed");
-/// The bytes of a SoupTriangle before its colors: all a record needs when the input has none.
-constexpr std::size_t SoupBytesWithoutColors = 52;
-static_assert(offsetof(SoupTriangle, Colors) == SoupBytesWithoutColors, "colors come last");
 
 /// A problem with an input file. The message names the file and says what is wrong.
 class VTKATPIO_EXPORT InputError : public std::runtime_error
