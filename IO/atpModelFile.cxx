@@ -238,10 +238,10 @@ void ModelFile::ValidateHeader()
     Throw(Cat("made by a newer version ", h.Version, " of the format (this reader reads version ",
       ModelVersion, ")"));
   }
-  if (h.Version == 1)
+  if (h.Version >= 1 && h.Version < ModelVersion)
   {
-    // Version 1 stored normals on 16 bits: its patches are not version 2's.
-    Throw(Cat("made by the older version 1 of the format (this reader reads version ",
+    // Older versions encoded patches differently (16-bit normals; no position prediction).
+    Throw(Cat("made by the older version ", h.Version, " of the format (this reader reads version ",
       ModelVersion, "): build it again"));
   }
   if (h.Version != ModelVersion)
@@ -269,7 +269,7 @@ void ModelFile::ValidateHeader()
     Throw(Cat(MapBytes, " bytes, but the header says ", h.FileBytes, ": trailing data"));
   }
 
-  // The one layout of version 2: header, nodes, patches, each 64-byte aligned, nothing after.
+  // The one layout of version 3: header, nodes, patches, each 64-byte aligned, nothing after.
   // The node count is bounded by the file size before anything is sized from it.
   const std::uint64_t nodeOffset = AlignUp(sizeof(ModelHeader), SectionAlignment);
   const std::uint64_t room = h.FileBytes > nodeOffset ? h.FileBytes - nodeOffset : 0;

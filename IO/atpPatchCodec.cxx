@@ -39,7 +39,9 @@ enum Stream
 constexpr std::size_t VertexCountOffset = 2;
 constexpr std::size_t TriangleCountOffset = 6;
 constexpr std::size_t MinOffset = 10;
-constexpr std::size_t StreamBytesOffset = 22;
+constexpr std::size_t BorderCountOffset = 22;
+constexpr std::size_t InteriorShiftOffset = 26;
+constexpr std::size_t StreamBytesOffset = 27;
 static_assert(StreamBytesOffset + 4 * StreamCount == PatchHeaderBytes, "header layout");
 
 /// The header fields, in the order of the layout in atpPatchCodec.h.
@@ -50,6 +52,8 @@ struct PatchHeader
   std::uint32_t VertexCount;
   std::uint32_t TriangleCount;
   std::uint32_t Min[3];
+  std::uint32_t BorderVertices;
+  std::uint8_t InteriorShift;
   std::uint32_t StreamBytes[StreamCount];
 };
 
@@ -77,6 +81,8 @@ void WriteHeader(const PatchHeader& h, std::uint8_t* p)
   {
     PutU32(p + MinOffset + 4 * a, h.Min[a]);
   }
+  PutU32(p + BorderCountOffset, h.BorderVertices);
+  p[InteriorShiftOffset] = h.InteriorShift;
   for (int s = 0; s < StreamCount; ++s)
   {
     PutU32(p + StreamBytesOffset + 4 * s, h.StreamBytes[s]);
@@ -105,6 +111,8 @@ PatchHeader ReadHeader(const std::uint8_t* p, std::size_t bytes)
   {
     h.Min[a] = GetU32(p + MinOffset + 4 * a);
   }
+  h.BorderVertices = GetU32(p + BorderCountOffset);
+  h.InteriorShift = p[InteriorShiftOffset];
   std::uint64_t streamTotal = 0;
   for (int s = 0; s < StreamCount; ++s)
   {
@@ -136,6 +144,11 @@ PatchHeader ReadHeader(const std::uint8_t* p, std::size_t bytes)
     {
       Fail("patch minimum outside the quantization grid");
     }
+  }
+  if (h.BorderVertices > h.VertexCount || h.InteriorShift >= QuantizationGrid::Bits)
+  {
+    Fail(std::to_string(h.BorderVertices) + " border vertices of " +
+      std::to_string(h.VertexCount) + ", interior shift " + std::to_string(h.InteriorShift));
   }
   if (h.VertexCount == 0 || h.TriangleCount == 0)
   {
@@ -287,6 +300,107 @@ std::int16_t UnstoredNormal(std::int16_t stored)
   const int value = int(stored) * (1 << NormalShift);
   return static_cast<std::int16_t>(std::min(32767, std::max(-32767, value)));
 }
+/// Parallelogram prediction (Touma and Gotsman 1998), the walk encoder and decoder share:
+/// triangles in order; a vertex at its first use is predicted from vertices already visited:
+/// across the edge it faces, from the triangle on the other side if that one came earlier
+/// (a + b - c), else from a visited corner of its triangle, else from the last vertex visited
+/// (`start` for the first). visit(v, prediction) must set q[v] (the encoder's are already
+/// there); it returns false to stop the walk. Returns whether every vertex was visited.
+template<typename Visit>
+bool PredictionWalk(const std::vector<std::uint32_t>& indices, std::size_t vertexCount,
+  const std::uint32_t start[3], std::vector<std::int64_t>& q, const Visit& visit)
+{
+  // Each directed edge a->b with its triangle, grouped by a (a counting sort).
+  std::vector<std::uint32_t> first(vertexCount + 1, 0);
+  for (const std::uint32_t a : indices)
+  {
+    ++first[a + 1];
+  }
+  for (std::size_t v = 0; v < vertexCount; ++v)
+  {
+    first[v + 1] += first[v];
+  }
+  std::vector<std::uint32_t> edgeEnd(indices.size()), edgeTriangle(indices.size());
+  std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+  const std::size_t triangles = indices.size() / 3;
+  for (std::size_t t = 0; t < triangles; ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t a = indices[3 * t + k];
+      edgeEnd[fill[a]] = indices[3 * t + (k + 1) % 3];
+      edgeTriangle[fill[a]++] = std::uint32_t(t);
+    }
+  }
+  std::vector<char> visited(vertexCount, 0);
+  std::size_t visitedCount = 0;
+  std::int64_t last[3] = { start[0], start[1], start[2] };
+  for (std::size_t t = 0; t < triangles; ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t v = indices[3 * t + k];
+      if (visited[v])
+      {
+        continue;
+      }
+      const std::uint32_t a = indices[3 * t + (k + 1) % 3], b = indices[3 * t + (k + 2) % 3];
+      std::int64_t prediction[3] = { last[0], last[1], last[2] };
+      std::uint32_t across = ~0u;
+      if (visited[a] && visited[b])
+      {
+        for (std::uint32_t e = first[b]; e < first[b + 1] && across == ~0u; ++e)
+        {
+          across = edgeEnd[e] == a && edgeTriangle[e] < t ? edgeTriangle[e] : ~0u;
+        }
+      }
+      if (across != ~0u)
+      {
+        const std::uint32_t* s = &indices[3 * std::size_t(across)];
+        const std::uint32_t c = s[0] != a && s[0] != b ? s[0] : (s[1] != a && s[1] != b ? s[1] : s[2]);
+        for (int x = 0; x < 3; ++x)
+        {
+          prediction[x] = q[3 * a + x] + q[3 * b + x] - q[3 * c + x];
+        }
+      }
+      else if (visited[a] || visited[b])
+      {
+        const std::uint32_t known = visited[a] ? a : b;
+        for (int x = 0; x < 3; ++x)
+        {
+          prediction[x] = q[3 * known + x];
+        }
+      }
+      if (!visit(v, prediction))
+      {
+        return false;
+      }
+      visited[v] = 1;
+      ++visitedCount;
+      for (int x = 0; x < 3; ++x)
+      {
+        last[x] = q[3 * v + x];
+      }
+    }
+  }
+  return visitedCount == vertexCount;
+}
+
+/// The prediction on an interior vertex's coarser grid: the nearest multiple of 2^shift.
+inline std::int64_t RoundPrediction(std::int64_t prediction, int shift)
+{
+  return shift == 0 ? prediction : ((prediction + (std::int64_t(1) << (shift - 1))) >> shift) << shift;
+}
+
+inline std::uint32_t ZigZag(std::int64_t value)
+{
+  return std::uint32_t(value < 0 ? ((-value) << 1) - 1 : value << 1);
+}
+
+inline std::int64_t UnZigZag(std::uint32_t value)
+{
+  return (value & 1) ? -std::int64_t((std::uint64_t(value) + 1) >> 1) : std::int64_t(value >> 1);
+}
 } // namespace
 
 double PatchPrecision::PositionError(const QuantizationGrid& grid) const
@@ -379,11 +493,12 @@ std::vector<std::uint8_t> EncodePatch(
       std::copy_n(&mesh.Colors[4 * v], 4, &colors[4 * to]);
     }
   }
-  for (std::size_t i = 0; i < positions.size(); ++i)
+  header.BorderVertices = 0;
+  for (std::size_t v = 0; v < vertexCount; ++v)
   {
-    positions[i] -= header.Min[i % 3];
+    header.BorderVertices += remap[v] != ~0u && border[v];
   }
-
+  header.InteriorShift = static_cast<std::uint8_t>(precision.InteriorPositionShift);
   header.VertexCount = static_cast<std::uint32_t>(used);
   header.TriangleCount = static_cast<std::uint32_t>(indexCount / 3);
   // Version 1 of meshopt's index codec (decoded by 0.14 and later) also codes the third
@@ -395,6 +510,21 @@ std::vector<std::uint8_t> EncodePatch(
     out.data() + PatchHeaderBytes, out.size() - PatchHeaderBytes, indices.data(), indexCount);
   out.resize(PatchHeaderBytes + indexBytes);
   header.StreamBytes[IndexStream] = static_cast<std::uint32_t>(indexBytes);
+  // The index codec may rotate a triangle's corners: the prediction walks the triangles as the
+  // decoder will see them.
+  meshopt_decodeIndexBuffer(indices.data(), indexCount, sizeof(std::uint32_t),
+    out.data() + PatchHeaderBytes, indexBytes);
+  // Positions become residuals of their prediction; interior ones count coarse steps.
+  std::vector<std::int64_t> q(positions.begin(), positions.end());
+  PredictionWalk(indices, used, header.Min, q, [&](std::uint32_t v, const std::int64_t* prediction) {
+    const int shift = v < header.BorderVertices ? 0 : header.InteriorShift;
+    for (int a = 0; a < 3; ++a)
+    {
+      positions[3 * v + a] = ZigZag((q[3 * v + a] - RoundPrediction(prediction[a], shift)) >> shift);
+    }
+    return true;
+  });
+
   EncodeVertices(out, header.StreamBytes[PositionStream], positions, PositionStride);
   EncodeVertices(out, header.StreamBytes[NormalStream], normals, NormalStride);
   if (mesh.HasColors())
@@ -436,29 +566,41 @@ void DecodePatch(
       std::to_string(vertexCount) + " vertices");
   }
 
-  // Positions decode in place: 3 x u32 per vertex become 3 floats of the same size.
+  // Residuals decode in place (3 x u32 per vertex, the size of 3 floats); the walk rebuilds the
+  // grid points from them, which then become floats in place.
   out.Positions.resize(3 * vertexCount);
   if (vertexCount > 0)
   {
     DecodeVertices(out.Positions.data(), vertexCount, PositionStride, streams[PositionStream],
       h.StreamBytes[PositionStream], "position");
   }
-  std::uint32_t outside = 0;
+  std::vector<std::int64_t> q(3 * vertexCount);
+  const bool inside = PredictionWalk(out.Indices, vertexCount, h.Min, q,
+    [&](std::uint32_t v, const std::int64_t* prediction) {
+      const int shift = v < h.BorderVertices ? 0 : h.InteriorShift;
+      std::uint32_t residual[3];
+      std::memcpy(residual, &out.Positions[3 * std::size_t(v)], sizeof(residual));
+      for (int a = 0; a < 3; ++a)
+      {
+        const std::int64_t value = RoundPrediction(prediction[a], shift) +
+          UnZigZag(residual[a]) * (std::int64_t(1) << shift);
+        if (value < 0 || value > std::int64_t(QuantizationGrid::MaxInteger))
+        {
+          return false;
+        }
+        q[3 * v + a] = value;
+      }
+      return true;
+    });
+  if (!inside)
+  {
+    Fail("position outside the quantization grid, or a vertex no triangle uses");
+  }
   for (std::size_t v = 0; v < vertexCount; ++v)
   {
-    std::uint32_t q[3];
-    std::memcpy(q, &out.Positions[3 * v], sizeof(q));
-    for (int a = 0; a < 3; ++a)
-    {
-      outside |= q[a];
-      q[a] += h.Min[a];
-      outside |= q[a];
-    }
-    grid.Dequantize(q, &out.Positions[3 * v]);
-  }
-  if (outside > QuantizationGrid::MaxInteger)
-  {
-    Fail("position outside the quantization grid");
+    const std::uint32_t grid3[3] = { std::uint32_t(q[3 * v]), std::uint32_t(q[3 * v + 1]),
+      std::uint32_t(q[3 * v + 2]) };
+    grid.Dequantize(grid3, &out.Positions[3 * v]);
   }
 
   // Normals decode into the last third of their own array (4 of the 12 bytes per vertex) and

@@ -3,11 +3,14 @@
 // Layout (little-endian): a PatchHeaderBytes header, then four streams back to back:
 //   u8  format version (PatchFormatVersion)   u8 flags (PatchFlag*)
 //   u32 vertex count   u32 triangle count
-//   u32 patch minimum grid point x, y, z
+//   u32 patch minimum grid point x, y, z (where position prediction starts)
+//   u32 border vertex count B (vertices 0..B-1 are on the patch border)
+//   u8  interior shift S (vertices B.. lie on multiples of 2^S grid steps)
 //   u32 byte sizes of the index, position, normal and color streams
 // - indices: meshopt_encodeIndexBuffer of the vertex-cache-ordered triangle list;
-// - positions: meshopt_encodeVertexBuffer of 3 x u32 per vertex, the QuantizationGrid integers
-//   minus the patch minimum (small numbers: their high bytes are zero and cost almost nothing);
+// - positions: meshopt_encodeVertexBuffer of 3 x u32 per vertex: the zigzag-coded residual of
+//   the vertex's QuantizationGrid integers from their parallelogram prediction (PredictionWalk
+//   in atpPatchCodec.cxx), in units of 2^S steps for interior vertices;
 // - normals: meshopt_encodeVertexBuffer of 2 x i16 octahedral coordinates of NormalBits bits
 //   (EncodeNormal of atpNormalEncoding.h, divided by 2^(16 - NormalBits) and rounded; at most
 //   0.12 degrees off any unit normal, half a grey level of diffuse shading at most; the same normal
@@ -29,12 +32,12 @@
 namespace atp
 {
 
-constexpr std::uint8_t PatchFormatVersion = 2;
+constexpr std::uint8_t PatchFormatVersion = 3;
 /// Bits per octahedral normal coordinate in the normal stream. 16 bits cost 0.7 bytes more
 /// per triangle (after compression) than 11 for no difference a display can show.
 constexpr int NormalBits = 11;
 constexpr std::uint8_t PatchFlagColors = 1u; ///< a color stream follows the normals
-constexpr std::size_t PatchHeaderBytes = 38;
+constexpr std::size_t PatchHeaderBytes = 43;
 /// Hard caps a decoder checks before allocating (patches hold a few thousand triangles).
 constexpr std::uint32_t MaxPatchVertices = 1u << 24;
 constexpr std::uint32_t MaxPatchTriangles = 1u << 24;

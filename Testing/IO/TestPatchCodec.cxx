@@ -380,9 +380,46 @@ TEST(PatchCodec, TopBinadeCoordinatesAreBitExact)
     TriangleSet(mesh.Positions, mesh.Indices));
 }
 
+/// Scanner-like noise on the heights, a function of x and y only (like Terrain's heights).
+void Roughen(atp::PatchMesh& mesh, float amplitude)
+{
+  for (std::size_t v = 0; v < mesh.VertexCount(); ++v)
+  {
+    const float x = mesh.Positions[3 * v], y = mesh.Positions[3 * v + 1];
+    mesh.Positions[3 * v + 2] += amplitude * std::sin(12345.0f * x) * std::cos(23456.0f * y);
+  }
+}
+
+/// Bytes of the position stream (the fourth u32 of the stream sizes).
+std::size_t PositionStreamBytes(const std::vector<std::uint8_t>& bytes)
+{
+  std::uint32_t size;
+  std::memcpy(&size, &bytes[atp::PatchHeaderBytes - 12], sizeof(size));
+  return size;
+}
+
+TEST(PatchCodec, SmoothSurfacesArePredicted)
+{
+  // A smooth height field: its grid points follow their parallelograms to within the
+  // curvature, so the lossless positions take a fraction of the 26 x 3 bits a point has (the
+  // grid's neighbors are 2^16 steps apart here: deltas alone would cost 5 to 6 bytes), and less
+  // than the same points with noise.
+  const atp::QuantizationGrid grid = GridFor(0, 1);
+  atp::PatchMesh mesh = Terrain(0.25f, 0.5f, 0.25f, 40, false, 3);
+  const std::vector<std::uint8_t> smooth = atp::EncodePatch(mesh, grid);
+  Roughen(mesh, 1e-3f);
+  const std::vector<std::uint8_t> rough = atp::EncodePatch(mesh, grid);
+  const double smoothPerVertex = double(PositionStreamBytes(smooth)) / double(mesh.VertexCount());
+  const double roughPerVertex = double(PositionStreamBytes(rough)) / double(mesh.VertexCount());
+  std::printf("positions: %.2f bytes per vertex smooth, %.2f rough\n", smoothPerVertex, roughPerVertex);
+  EXPECT_LT(smoothPerVertex, 2.0);
+  EXPECT_LT(smoothPerVertex, roughPerVertex);
+}
+
 TEST(PatchCodec, CoarserInteriorKeepsTheBorderExactAndShrinks)
 {
-  const atp::PatchMesh mesh = Terrain(0.25f, 0.5f, 0.25f, 40, false, 3);
+  atp::PatchMesh mesh = Terrain(0.25f, 0.5f, 0.25f, 40, false, 3);
+  Roughen(mesh, 1e-4f); // below the coarse grid's step: rounded away inside
   const atp::QuantizationGrid grid = GridFor(0, 1);
   atp::PatchPrecision coarse;
   coarse.InteriorPositionShift = 12;
