@@ -386,10 +386,13 @@ bool PredictionWalk(const std::vector<std::uint32_t>& indices, std::size_t verte
   return visitedCount == vertexCount;
 }
 
-/// The prediction on an interior vertex's coarser grid: the nearest multiple of 2^shift.
+/// The prediction on an interior vertex's coarser grid: the nearest multiple of 2^shift (the
+/// right shift floors negative predictions too; multiplying back avoids shifting them left).
 inline std::int64_t RoundPrediction(std::int64_t prediction, int shift)
 {
-  return shift == 0 ? prediction : ((prediction + (std::int64_t(1) << (shift - 1))) >> shift) << shift;
+  return shift == 0
+    ? prediction
+    : ((prediction + (std::int64_t(1) << (shift - 1))) >> shift) * (std::int64_t(1) << shift);
 }
 
 inline std::uint32_t ZigZag(std::int64_t value)
