@@ -20,6 +20,7 @@ constexpr std::size_t MaxPageCorners = BucketStore::PageBytes / PositionNormalBy
 /// Slots of a frame's corner table: a power of two at least twice the corners.
 constexpr std::size_t CornerTableSlots = 2048;
 static_assert(CornerTableSlots >= 2 * MaxPageCorners, "corner table load at most 1/2");
+static_assert(PositionNormalBytes == 16, "a corner key is its position and normal");
 
 std::uint16_t GetU16(const unsigned char* p)
 {
@@ -33,16 +34,32 @@ void PutU16(unsigned char* p, std::uint16_t v)
   std::memcpy(p, &v, sizeof(v));
 }
 
-std::size_t HashCorner(const unsigned char* corner, std::size_t bytes)
+/// A corner's first 16 bytes (position and normal; colors rarely tell corners apart).
+struct CornerKey
 {
-  std::uint64_t h = 0x9E3779B97F4A7C15ull;
-  for (std::size_t at = 0; at + 4 <= bytes; at += 4)
-  {
-    std::uint32_t word;
-    std::memcpy(&word, corner + at, sizeof(word));
-    h = (h ^ word) * 0xFF51AFD7ED558CCDull;
-  }
-  return std::size_t(h ^ (h >> 29));
+  std::uint64_t Low, High;
+};
+
+CornerKey KeyOf(const unsigned char* corner)
+{
+  CornerKey key;
+  std::memcpy(&key.Low, corner, sizeof(key.Low));
+  std::memcpy(&key.High, corner + sizeof(key.Low), sizeof(key.High));
+  return key;
+}
+
+std::size_t HashCorner(const CornerKey& key)
+{
+  const std::uint64_t h = key.Low * 0x9E3779B97F4A7C15ull ^ key.High * 0xC2B2AE3D27D4EB4Full;
+  return std::size_t(h ^ (h >> 31));
+}
+
+bool SameCorner(const unsigned char* a, const CornerKey& keyOfB, const unsigned char* b, std::size_t bytes)
+{
+  const CornerKey keyOfA = KeyOf(a);
+  return keyOfA.Low == keyOfB.Low && keyOfA.High == keyOfB.High &&
+    (bytes == sizeof(CornerKey) ||
+      std::memcmp(a + sizeof(CornerKey), b + sizeof(CornerKey), bytes - sizeof(CornerKey)) == 0);
 }
 } // namespace
 
@@ -218,7 +235,7 @@ void BucketStore::IndexCorners(std::size_t frame)
   for (std::size_t c = 0; c < corners; ++c)
   {
     const unsigned char* corner = page + PageHeaderBytes + c * CornerBytes;
-    std::size_t slot = HashCorner(corner, CornerBytes) & (CornerTableSlots - 1);
+    std::size_t slot = HashCorner(KeyOf(corner)) & (CornerTableSlots - 1);
     while (table[slot] != 0)
     {
       slot = (slot + 1) & (CornerTableSlots - 1);
@@ -232,11 +249,12 @@ int BucketStore::CornerIndex(std::size_t frame, const unsigned char* corner)
 {
   unsigned char* page = FrameData(frame);
   std::uint16_t* table = &CornerTables[frame * CornerTableSlots];
-  std::size_t slot = HashCorner(corner, CornerBytes) & (CornerTableSlots - 1);
+  const CornerKey key = KeyOf(corner);
+  std::size_t slot = HashCorner(key) & (CornerTableSlots - 1);
   for (; table[slot] != 0; slot = (slot + 1) & (CornerTableSlots - 1))
   {
     const std::size_t c = table[slot] - 1u;
-    if (std::memcmp(page + PageHeaderBytes + c * CornerBytes, corner, CornerBytes) == 0)
+    if (SameCorner(page + PageHeaderBytes + c * CornerBytes, key, corner, CornerBytes))
     {
       return int(c);
     }

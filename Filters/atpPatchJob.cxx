@@ -34,9 +34,8 @@ PatchPrecision PrecisionFor(const QuantizationGrid& grid, double error)
 /// mesh before encoding.
 void Finish(MadePatch& made, const QuantizationGrid& grid, const PatchPrecision& precision)
 {
-  made.Encoded = EncodePatch(made.Mesh, grid, precision);
   PatchMesh decoded;
-  DecodePatch(made.Encoded.data(), made.Encoded.size(), grid, decoded);
+  made.Encoded = EncodePatch(made.Mesh, grid, precision, &decoded);
   made.Tight = EnclosingSphere(decoded.Positions.data(), decoded.VertexCount());
   made.Cone = FaceNormalCone(decoded);
 }

@@ -414,8 +414,8 @@ double PatchPrecision::PositionError(const QuantizationGrid& grid) const
     : std::sqrt(3.0) * std::ldexp(grid.Step, InteriorPositionShift - 1);
 }
 
-std::vector<std::uint8_t> EncodePatch(
-  const PatchMesh& mesh, const QuantizationGrid& grid, const PatchPrecision& precision)
+std::vector<std::uint8_t> EncodePatch(const PatchMesh& mesh, const QuantizationGrid& grid,
+  const PatchPrecision& precision, PatchMesh* decoded)
 {
   CheckMesh(mesh);
   if (precision.InteriorPositionShift < 0 || precision.InteriorPositionShift >= QuantizationGrid::Bits)
@@ -430,6 +430,10 @@ std::vector<std::uint8_t> EncodePatch(
   if (indexCount == 0)
   {
     WriteHeader(header, out.data());
+    if (decoded)
+    {
+      *decoded = PatchMesh();
+    }
     return out;
   }
 
@@ -535,6 +539,24 @@ std::vector<std::uint8_t> EncodePatch(
     EncodeVertices(out, header.StreamBytes[ColorStream], colors, ColorStride);
   }
   WriteHeader(header, out.data());
+  if (decoded)
+  {
+    // What DecodePatch gives back, from the values encoded rather than from the bytes.
+    decoded->BoundaryEdges.clear();
+    decoded->Indices = std::move(indices);
+    decoded->Positions.resize(3 * used);
+    decoded->Normals.resize(3 * used);
+    for (std::size_t v = 0; v < used; ++v)
+    {
+      const std::uint32_t point[3] = { std::uint32_t(q[3 * v]), std::uint32_t(q[3 * v + 1]),
+        std::uint32_t(q[3 * v + 2]) };
+      grid.Dequantize(point, &decoded->Positions[3 * v]);
+      const std::int16_t octahedral[2] = { UnstoredNormal(normals[2 * v]),
+        UnstoredNormal(normals[2 * v + 1]) };
+      DecodeNormal(octahedral, &decoded->Normals[3 * v]);
+    }
+    decoded->Colors = std::move(colors);
+  }
   return out;
 }
 

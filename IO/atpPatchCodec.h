@@ -64,10 +64,12 @@ struct PatchPrecision
 
 /// Reorders triangles for the vertex cache and vertices for fetch order, border vertices first
 /// (vertices no triangle uses are dropped), quantizes positions on `grid` with `precision`, and
-/// encodes. BoundaryEdges is not stored. Throws std::invalid_argument for an inconsistent mesh
-/// (array sizes, indices out of range, counts over the caps) or precision.
-VTKATPIO_EXPORT std::vector<std::uint8_t> EncodePatch(
-  const PatchMesh& mesh, const QuantizationGrid& grid, const PatchPrecision& precision = {});
+/// encodes. BoundaryEdges is not stored. `decoded`, when given, receives exactly what
+/// DecodePatch would give back from the bytes, without decoding them. Throws
+/// std::invalid_argument for an inconsistent mesh (array sizes, indices out of range, counts
+/// over the caps) or precision.
+VTKATPIO_EXPORT std::vector<std::uint8_t> EncodePatch(const PatchMesh& mesh,
+  const QuantizationGrid& grid, const PatchPrecision& precision = {}, PatchMesh* decoded = nullptr);
 
 /// Decodes into `out`, reusing its capacity: positions through grid.Dequantize, unit normals,
 /// colors when stored, indices all below the vertex count; BoundaryEdges is left empty.

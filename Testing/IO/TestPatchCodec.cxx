@@ -390,12 +390,37 @@ void Roughen(atp::PatchMesh& mesh, float amplitude)
   }
 }
 
-/// Bytes of the position stream (the fourth u32 of the stream sizes).
+/// Bytes of the position stream (the second of the four stream sizes that end the header).
 std::size_t PositionStreamBytes(const std::vector<std::uint8_t>& bytes)
 {
   std::uint32_t size;
   std::memcpy(&size, &bytes[atp::PatchHeaderBytes - 12], sizeof(size));
   return size;
+}
+
+// Construction takes a patch's sphere and cone from what a reader decodes, which the encoder
+// hands out without decoding: it must be exactly that.
+TEST(PatchCodec, EncodersDecodedMeshIsTheDecodersBitForBit)
+{
+  const atp::QuantizationGrid grid = GridFor(-2, 2);
+  atp::PatchPrecision coarse;
+  coarse.InteriorPositionShift = 9;
+  atp::PatchMesh rough = Terrain(-1.5f, 0.25f, 1.0f, 30, true, 5);
+  Roughen(rough, 1e-3f);
+  for (const atp::PatchPrecision& precision : { atp::PatchPrecision(), coarse })
+  {
+    for (const atp::PatchMesh& mesh : { rough, Terrain(0, 0, 0.5f, 7, false, 2), atp::PatchMesh() })
+    {
+      atp::PatchMesh fromEncoder, fromBytes;
+      const std::vector<std::uint8_t> bytes = atp::EncodePatch(mesh, grid, precision, &fromEncoder);
+      atp::DecodePatch(bytes.data(), bytes.size(), grid, fromBytes);
+      EXPECT_EQ(fromEncoder.Indices, fromBytes.Indices);
+      EXPECT_EQ(fromEncoder.Positions, fromBytes.Positions);
+      EXPECT_EQ(fromEncoder.Normals, fromBytes.Normals);
+      EXPECT_EQ(fromEncoder.Colors, fromBytes.Colors);
+      EXPECT_TRUE(fromEncoder.BoundaryEdges.empty());
+    }
+  }
 }
 
 TEST(PatchCodec, SmoothSurfacesArePredicted)
