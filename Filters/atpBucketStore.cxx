@@ -284,6 +284,13 @@ bool BucketStore::AddToPage(std::size_t frame, const SoupTriangle& triangle)
   {
     return false; // not even room for a triangle of known corners
   }
+  // Consecutive triangles of a bucket are mostly neighbors in the stream: the corners of the
+  // last one answer most lookups without touching the corner table.
+  std::uint16_t previous[3] = { 0, 0, 0 };
+  if (triangles > 0)
+  {
+    std::memcpy(previous, page + PageBytes - std::size_t(triangles) * TriangleBytes, sizeof(previous));
+  }
   std::uint16_t numbers[3];
   for (int k = 0; k < 3; ++k)
   {
@@ -291,7 +298,15 @@ bool BucketStore::AddToPage(std::size_t frame, const SoupTriangle& triangle)
     std::memcpy(corner, triangle.V[k], 3 * sizeof(float));
     std::memcpy(corner + 3 * sizeof(float), triangle.Normals[k], 2 * sizeof(std::int16_t));
     std::memcpy(corner + PositionNormalBytes, triangle.Colors[k], CornerBytes - PositionNormalBytes);
-    const int number = CornerIndex(frame, corner);
+    int number = -1;
+    const CornerKey key = KeyOf(corner);
+    for (int j = 0; j < 3 && triangles > 0 && number < 0; ++j)
+    {
+      number = SameCorner(page + PageHeaderBytes + previous[j] * CornerBytes, key, corner, CornerBytes)
+        ? int(previous[j])
+        : -1;
+    }
+    number = number >= 0 ? number : CornerIndex(frame, corner);
     if (number < 0)
     {
       // Full: forget the corners this triangle added, it goes to a new page.
