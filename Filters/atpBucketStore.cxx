@@ -271,7 +271,7 @@ int BucketStore::CornerIndex(std::size_t frame, const unsigned char* corner)
   return int(corners);
 }
 
-bool BucketStore::AddToPage(std::size_t frame, const SoupTriangle& triangle)
+bool BucketStore::AddToPage(std::size_t frame, const SoupTriangle& triangle, Bucket& bucket)
 {
   if (!CornersIndexed[frame])
   {
@@ -284,27 +284,18 @@ bool BucketStore::AddToPage(std::size_t frame, const SoupTriangle& triangle)
   {
     return false; // not even room for a triangle of known corners
   }
-  // Consecutive triangles of a bucket are mostly neighbors in the stream: the corners of the
-  // last one answer most lookups without touching the corner table.
-  std::uint16_t previous[3] = { 0, 0, 0 };
-  if (triangles > 0)
-  {
-    std::memcpy(previous, page + PageBytes - std::size_t(triangles) * TriangleBytes, sizeof(previous));
-  }
+  unsigned char corners[3][MaxCornerBytes];
   std::uint16_t numbers[3];
   for (int k = 0; k < 3; ++k)
   {
-    unsigned char corner[PositionNormalBytes + 4];
+    unsigned char* corner = corners[k];
     std::memcpy(corner, triangle.V[k], 3 * sizeof(float));
     std::memcpy(corner + 3 * sizeof(float), triangle.Normals[k], 2 * sizeof(std::int16_t));
     std::memcpy(corner + PositionNormalBytes, triangle.Colors[k], CornerBytes - PositionNormalBytes);
     int number = -1;
-    const CornerKey key = KeyOf(corner);
-    for (int j = 0; j < 3 && triangles > 0 && number < 0; ++j)
+    for (int j = 0; j < 3 && bucket.HasLast && number < 0; ++j)
     {
-      number = SameCorner(page + PageHeaderBytes + previous[j] * CornerBytes, key, corner, CornerBytes)
-        ? int(previous[j])
-        : -1;
+      number = std::memcmp(bucket.LastCorners[j], corner, CornerBytes) == 0 ? int(bucket.LastNumbers[j]) : -1;
     }
     number = number >= 0 ? number : CornerIndex(frame, corner);
     if (number < 0)
@@ -320,6 +311,9 @@ bool BucketStore::AddToPage(std::size_t frame, const SoupTriangle& triangle)
   std::memcpy(record, numbers, sizeof(numbers));
   record[6] = triangle.BoundaryEdges;
   PutU16(page + 2, std::uint16_t(triangles + 1));
+  std::memcpy(bucket.LastCorners, corners, sizeof(corners));
+  std::memcpy(bucket.LastNumbers, numbers, sizeof(numbers));
+  bucket.HasLast = true;
   return true;
 }
 
@@ -331,12 +325,13 @@ void BucketStore::Append(BucketIndex bucketIndex, const SoupTriangle& triangle)
   }
   Bucket& bucket = Buckets[bucketIndex];
   std::size_t frame = bucket.Pages.empty() ? 0 : Resident(bucket.Pages.back(), true);
-  if (bucket.Pages.empty() || !AddToPage(frame, triangle))
+  if (bucket.Pages.empty() || !AddToPage(frame, triangle, bucket))
   {
     const PageIndex page = NewPage();
     bucket.Pages.push_back(page);
+    bucket.HasLast = false; // its numbers were the old page's
     frame = Resident(page, false);
-    AddToPage(frame, triangle); // an empty page holds any triangle
+    AddToPage(frame, triangle, bucket); // an empty page holds any triangle
   }
   FrameDirty[frame] = 1;
   FrameReferenced[frame] = 1;

@@ -64,10 +64,18 @@ private:
   using PageIndex = std::uint32_t;
   static constexpr std::int32_t NotResident = -1;
 
+  /// The most bytes a corner takes: position, normal, color.
+  static constexpr std::size_t MaxCornerBytes = 20;
   struct Bucket
   {
     std::vector<PageIndex> Pages;
     std::uint64_t Count = 0;
+    /// The corners of the last triangle appended and their numbers in the last page (none
+    /// after a new page starts): the next triangle, a stream neighbour, mostly shares them,
+    /// and finding them here touches no page memory.
+    unsigned char LastCorners[3][MaxCornerBytes];
+    std::uint16_t LastNumbers[3];
+    bool HasLast = false;
   };
   enum class FrameState : char
   {
@@ -87,7 +95,7 @@ private:
   std::size_t Resident(PageIndex page, bool load);
   std::size_t FreeFrame();
   /// Adds the triangle to the page in `frame` if its new corners fit; false when full.
-  bool AddToPage(std::size_t frame, const SoupTriangle& triangle);
+  bool AddToPage(std::size_t frame, const SoupTriangle& triangle, Bucket& bucket);
   /// The corner's number in the page in `frame`, added if new; -1 when it does not fit.
   int CornerIndex(std::size_t frame, const unsigned char* corner);
   /// Fills in the corner lookup of the page in `frame` from its corners.
