@@ -63,8 +63,13 @@ public:
     {
       levels[std::size_t(Forest[n].Id.Level())].push_back(n);
     }
+    // The intermediate patches of the level below, all read by this level's diamonds, go back
+    // to the file system at once when the level is done: one hole punched per level, not one
+    // per patch (a punch can wait on the file system's journal).
+    std::uint64_t levelBelowStart = Intermediate.BytesWritten();
     for (int level = Forest.Depth(); level >= 0; --level)
     {
+      const std::uint64_t levelStart = Intermediate.BytesWritten();
       std::vector<NodeIndex> leaves, inner;
       for (NodeIndex n : levels[std::size_t(level)])
       {
@@ -73,6 +78,8 @@ public:
       MakeLeafPatches(leaves, level > 0);
       SaturateLeafDiamonds(leaves);
       SimplifyDiamonds(inner, level > 0);
+      Intermediate.Release({ levelBelowStart, levelStart - levelBelowStart });
+      levelBelowStart = levelStart;
     }
     Write(outputPath);
     return Stats;
@@ -211,7 +218,6 @@ private:
         childSaturatedError = std::max(childSaturatedError, child.SaturatedError);
         spheres.push_back(LoadSphere(child.SaturatedSphere));
         cones.push_back(child.Cone);
-        Intermediate.Release(child.Intermediate);
       }
       Results[std::size_t(m)].Cone = EnclosingCone(cones);
     }
@@ -259,6 +265,18 @@ private:
     std::vector<ModelNode> nodes(order.size());
     ModelWriter writer(outputPath, order.size());
     std::vector<std::uint8_t> bytes;
+    // Each level's encoded patches lie together in the scratch file (levels were made one after
+    // the other) and are copied out together (the file is ordered by level): the model grows as
+    // the scratch shrinks, one level, and one hole punch, at a time.
+    std::vector<std::uint64_t> levelFirst(std::size_t(Forest.Depth()) + 1, ~std::uint64_t(0));
+    std::vector<std::uint64_t> levelEnd(levelFirst.size(), 0);
+    for (NodeIndex n = 0; n < NodeIndex(Forest.Size()); ++n)
+    {
+      const std::size_t level = std::size_t(Forest[n].Id.Level());
+      const NodeResult& r = Results[std::size_t(n)];
+      levelFirst[level] = std::min(levelFirst[level], r.EncodedOffset);
+      levelEnd[level] = std::max(levelEnd[level], r.EncodedOffset + r.EncodedBytes);
+    }
     for (std::size_t i = 0; i < order.size(); ++i)
     {
       const TetraForest::Node& tet = Forest[order[i]];
@@ -280,8 +298,13 @@ private:
       std::copy(r.SaturatedSphere, r.SaturatedSphere + 4, node.SaturatedSphere);
       bytes.resize(r.EncodedBytes);
       Encoded.ReadAt(r.EncodedOffset, bytes.data(), bytes.size());
-      Encoded.Release(r.EncodedOffset, r.EncodedBytes); // the model grows as this shrinks
       writer.AddPatch(bytes.data(), bytes.size());
+      const std::size_t level = std::size_t(tet.Id.Level());
+      if ((i + 1 == order.size() || Forest[order[i + 1]].Id.Level() != tet.Id.Level()) &&
+        levelFirst[level] < levelEnd[level])
+      {
+        Encoded.Release(levelFirst[level], levelEnd[level] - levelFirst[level]);
+      }
     }
     ModelHeader header;
     std::memset(&header, 0, sizeof(header));
