@@ -30,7 +30,8 @@ public:
   Handle Put(const PatchMesh& patch);
   /// Reads a patch back; safe from several threads at once.
   void Get(const Handle& handle, PatchMesh& out) const;
-  /// Gives the patch's disk blocks back to the file system: it will not be read again.
+  /// Gives the disk blocks of a patch, or of consecutive patches (a Handle spanning them, each
+  /// released once), back to the file system: they will not be read again.
   void Release(const Handle& handle);
 
   std::uint64_t BytesWritten() const { return End; }

@@ -95,3 +95,23 @@ TEST_F(PatchStore, RecordIsCompact)
   EXPECT_EQ(store.PeakBytes(), second.Bytes) << "released bytes count no more";
   EXPECT_EQ(store.BytesWritten(), 2 * handle.Bytes);
 }
+
+// Construction gives a whole level back at once: a handle spanning consecutive patches.
+TEST_F(PatchStore, ARangeOfPatchesIsReleasedAtOnce)
+{
+  atp::PatchStore store(Dir.string());
+  const atp::PatchMesh patch = RandomPatch(100, 150, true, 6);
+  const std::uint64_t start = store.BytesWritten();
+  for (int i = 0; i < 3; ++i)
+  {
+    store.Put(patch);
+  }
+  const std::uint64_t level = store.BytesWritten() - start;
+  EXPECT_EQ(store.PeakBytes(), level);
+  store.Release({ start, level });
+  const atp::PatchStore::Handle next = store.Put(patch);
+  EXPECT_EQ(store.PeakBytes(), level) << "the released range no longer counts";
+  atp::PatchMesh back;
+  store.Get(next, back);
+  ExpectSame(back, patch);
+}
