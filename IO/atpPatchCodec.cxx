@@ -227,43 +227,57 @@ void CheckMesh(const PatchMesh& mesh)
     }
   }
 }
-/// Per vertex: whether it lies on an edge used by exactly one triangle of the patch. Edges are
-/// grouped by their smaller vertex with a counting sort (linear; each group holds a handful).
+/// Each directed edge a->b of a triangle list with its triangle, grouped by a (a counting
+/// sort): the edges leaving a are End[e], Triangle[e] for e in [First[a], First[a + 1]), in
+/// triangle order. Groups hold a vertex's few neighbours.
+struct EdgesByStart
+{
+  EdgesByStart(const std::vector<std::uint32_t>& indices, std::size_t vertexCount)
+    : First(vertexCount + 1, 0)
+    , End(indices.size())
+    , Triangle(indices.size())
+  {
+    for (const std::uint32_t a : indices)
+    {
+      ++First[a + 1];
+    }
+    for (std::size_t v = 0; v < vertexCount; ++v)
+    {
+      First[v + 1] += First[v];
+    }
+    std::vector<std::uint32_t> fill(First.begin(), First.end() - 1);
+    for (std::size_t c = 0; c < indices.size(); ++c)
+    {
+      const std::uint32_t a = indices[c];
+      End[fill[a]] = indices[c - c % 3 + (c + 1) % 3];
+      Triangle[fill[a]++] = std::uint32_t(c / 3);
+    }
+  }
+
+  /// How many triangles hold the directed edge a->b.
+  std::size_t Count(std::uint32_t a, std::uint32_t b) const
+  {
+    return std::size_t(std::count(End.begin() + First[a], End.begin() + First[a + 1], b));
+  }
+
+  std::vector<std::uint32_t> First, End, Triangle;
+};
+
+/// Per vertex: whether it lies on an edge used by exactly one triangle of the patch.
 std::vector<bool> BorderVertices(const std::vector<std::uint32_t>& indices, std::size_t vertexCount)
 {
-  std::vector<std::uint32_t> groupStart(vertexCount + 1, 0);
-  const auto forEachEdge = [&indices](const auto& visit) {
-    for (std::size_t t = 0; t < indices.size(); t += 3)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        const std::uint32_t a = indices[t + c], b = indices[t + (c + 1) % 3];
-        visit(std::min(a, b), std::max(a, b));
-      }
-    }
-  };
-  forEachEdge([&](std::uint32_t low, std::uint32_t) { ++groupStart[low + 1]; });
-  for (std::size_t v = 0; v < vertexCount; ++v)
-  {
-    groupStart[v + 1] += groupStart[v];
-  }
-  std::vector<std::uint32_t> high(indices.size());
-  std::vector<std::uint32_t> fill(groupStart.begin(), groupStart.end() - 1);
-  forEachEdge([&](std::uint32_t low, std::uint32_t other) { high[fill[low]++] = other; });
+  const EdgesByStart edges(indices, vertexCount);
   std::vector<bool> border(vertexCount, false);
-  for (std::uint32_t low = 0; low < vertexCount; ++low)
+  for (std::uint32_t a = 0; a < vertexCount; ++a)
   {
-    const auto first = high.begin() + groupStart[low], last = high.begin() + groupStart[low + 1];
-    std::sort(first, last);
-    for (auto at = first; at != last;)
+    for (std::uint32_t e = edges.First[a]; e < edges.First[a + 1]; ++e)
     {
-      const auto next = std::find_if(at, last, [&at](std::uint32_t x) { return x != *at; });
-      if (next - at == 1)
+      const std::uint32_t b = edges.End[e];
+      if (edges.Count(a, b) + edges.Count(b, a) == 1)
       {
-        border[low] = true;
-        border[*at] = true;
+        border[a] = true;
+        border[b] = true;
       }
-      at = next;
     }
   }
   return border;
@@ -310,28 +324,8 @@ template<typename Visit>
 bool PredictionWalk(const std::vector<std::uint32_t>& indices, std::size_t vertexCount,
   const std::uint32_t start[3], std::vector<std::int64_t>& q, const Visit& visit)
 {
-  // Each directed edge a->b with its triangle, grouped by a (a counting sort).
-  std::vector<std::uint32_t> first(vertexCount + 1, 0);
-  for (const std::uint32_t a : indices)
-  {
-    ++first[a + 1];
-  }
-  for (std::size_t v = 0; v < vertexCount; ++v)
-  {
-    first[v + 1] += first[v];
-  }
-  std::vector<std::uint32_t> edgeEnd(indices.size()), edgeTriangle(indices.size());
-  std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+  const EdgesByStart edges(indices, vertexCount);
   const std::size_t triangles = indices.size() / 3;
-  for (std::size_t t = 0; t < triangles; ++t)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      const std::uint32_t a = indices[3 * t + k];
-      edgeEnd[fill[a]] = indices[3 * t + (k + 1) % 3];
-      edgeTriangle[fill[a]++] = std::uint32_t(t);
-    }
-  }
   std::vector<char> visited(vertexCount, 0);
   std::size_t visitedCount = 0;
   std::int64_t last[3] = { start[0], start[1], start[2] };
@@ -349,9 +343,9 @@ bool PredictionWalk(const std::vector<std::uint32_t>& indices, std::size_t verte
       std::uint32_t across = ~0u;
       if (visited[a] && visited[b])
       {
-        for (std::uint32_t e = first[b]; e < first[b + 1] && across == ~0u; ++e)
+        for (std::uint32_t e = edges.First[b]; e < edges.First[b + 1] && across == ~0u; ++e)
         {
-          across = edgeEnd[e] == a && edgeTriangle[e] < t ? edgeTriangle[e] : ~0u;
+          across = edges.End[e] == a && edges.Triangle[e] < t ? edges.Triangle[e] : ~0u;
         }
       }
       if (across != ~0u)
