@@ -34,44 +34,10 @@ void PutU16(unsigned char* p, std::uint16_t v)
   std::memcpy(p, &v, sizeof(v));
 }
 
-/// A corner's first 16 bytes (position and normal; colors rarely tell corners apart).
-struct CornerKey
+std::size_t HashCorner(std::uint64_t low, std::uint64_t high)
 {
-  std::uint64_t Low, High;
-};
-
-CornerKey KeyOf(const unsigned char* corner)
-{
-  CornerKey key;
-  std::memcpy(&key.Low, corner, sizeof(key.Low));
-  std::memcpy(&key.High, corner + sizeof(key.Low), sizeof(key.High));
-  return key;
-}
-
-std::size_t HashCorner(const CornerKey& key)
-{
-  const std::uint64_t h = key.Low * 0x9E3779B97F4A7C15ull ^ key.High * 0xC2B2AE3D27D4EB4Full;
+  const std::uint64_t h = low * 0x9E3779B97F4A7C15ull ^ high * 0xC2B2AE3D27D4EB4Full;
   return std::size_t(h ^ (h >> 31));
-}
-
-/// Compared as words, not with memcmp: this runs for every corner appended (a library call
-/// per comparison was a quarter of the partitioning thread's time). `bytes` is the key alone
-/// or the key and one word of color.
-bool SameCorner(const unsigned char* a, const CornerKey& keyOfB, const unsigned char* b, std::size_t bytes)
-{
-  const CornerKey keyOfA = KeyOf(a);
-  if (keyOfA.Low != keyOfB.Low || keyOfA.High != keyOfB.High)
-  {
-    return false;
-  }
-  if (bytes == sizeof(CornerKey))
-  {
-    return true;
-  }
-  std::uint32_t colorA, colorB;
-  std::memcpy(&colorA, a + sizeof(CornerKey), sizeof(colorA));
-  std::memcpy(&colorB, b + sizeof(CornerKey), sizeof(colorB));
-  return colorA == colorB;
 }
 } // namespace
 
@@ -238,6 +204,38 @@ std::size_t BucketStore::Resident(PageIndex page, bool load)
   return frame;
 }
 
+BucketStore::Corner BucketStore::CornerOf(const SoupTriangle& triangle, int k) const
+{
+  // The words hold the bytes a page stores (position, normal, color), in memory order.
+  Corner corner;
+  std::memcpy(&corner.Low, triangle.V[k], sizeof(corner.Low));
+  std::uint32_t z, normal;
+  std::memcpy(&z, &triangle.V[k][2], sizeof(z));
+  std::memcpy(&normal, triangle.Normals[k], sizeof(normal));
+#if __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+  corner.High = z | std::uint64_t(normal) << 32;
+#else
+  corner.High = std::uint64_t(z) << 32 | normal;
+#endif
+  if (CornerBytes > PositionNormalBytes)
+  {
+    std::memcpy(&corner.Color, triangle.Colors[k], sizeof(corner.Color));
+  }
+  return corner;
+}
+
+BucketStore::Corner BucketStore::CornerAt(const unsigned char* bytes) const
+{
+  Corner corner;
+  std::memcpy(&corner.Low, bytes, sizeof(corner.Low));
+  std::memcpy(&corner.High, bytes + sizeof(corner.Low), sizeof(corner.High));
+  if (CornerBytes > PositionNormalBytes)
+  {
+    std::memcpy(&corner.Color, bytes + PositionNormalBytes, sizeof(corner.Color));
+  }
+  return corner;
+}
+
 void BucketStore::IndexCorners(std::size_t frame)
 {
   std::uint16_t* table = &CornerTables[frame * CornerTableSlots];
@@ -246,8 +244,8 @@ void BucketStore::IndexCorners(std::size_t frame)
   const std::size_t corners = GetU16(page);
   for (std::size_t c = 0; c < corners; ++c)
   {
-    const unsigned char* corner = page + PageHeaderBytes + c * CornerBytes;
-    std::size_t slot = HashCorner(KeyOf(corner)) & (CornerTableSlots - 1);
+    const Corner corner = CornerAt(page + PageHeaderBytes + c * CornerBytes);
+    std::size_t slot = HashCorner(corner.Low, corner.High) & (CornerTableSlots - 1);
     while (table[slot] != 0)
     {
       slot = (slot + 1) & (CornerTableSlots - 1);
@@ -257,16 +255,15 @@ void BucketStore::IndexCorners(std::size_t frame)
   CornersIndexed[frame] = 1;
 }
 
-int BucketStore::CornerIndex(std::size_t frame, const unsigned char* corner)
+int BucketStore::CornerIndex(std::size_t frame, const Corner& corner)
 {
   unsigned char* page = FrameData(frame);
   std::uint16_t* table = &CornerTables[frame * CornerTableSlots];
-  const CornerKey key = KeyOf(corner);
-  std::size_t slot = HashCorner(key) & (CornerTableSlots - 1);
+  std::size_t slot = HashCorner(corner.Low, corner.High) & (CornerTableSlots - 1);
   for (; table[slot] != 0; slot = (slot + 1) & (CornerTableSlots - 1))
   {
     const std::size_t c = table[slot] - 1u;
-    if (SameCorner(page + PageHeaderBytes + c * CornerBytes, key, corner, CornerBytes))
+    if (CornerAt(page + PageHeaderBytes + c * CornerBytes) == corner)
     {
       return int(c);
     }
@@ -277,7 +274,10 @@ int BucketStore::CornerIndex(std::size_t frame, const unsigned char* corner)
   {
     return -1;
   }
-  std::memcpy(page + PageHeaderBytes + corners * CornerBytes, corner, CornerBytes);
+  unsigned char* bytes = page + PageHeaderBytes + corners * CornerBytes;
+  std::memcpy(bytes, &corner.Low, sizeof(corner.Low));
+  std::memcpy(bytes + sizeof(corner.Low), &corner.High, sizeof(corner.High));
+  std::memcpy(bytes + PositionNormalBytes, &corner.Color, CornerBytes - PositionNormalBytes);
   PutU16(page, std::uint16_t(corners + 1));
   table[slot] = std::uint16_t(corners + 1);
   return int(corners);
@@ -296,21 +296,19 @@ bool BucketStore::AddToPage(std::size_t frame, const SoupTriangle& triangle, Buc
   {
     return false; // not even room for a triangle of known corners
   }
-  unsigned char corners[3][MaxCornerBytes];
+  // The record's room is reserved by the checks: each number goes in as it is found.
+  unsigned char* record = page + PageBytes - (std::size_t(triangles) + 1) * TriangleBytes;
+  Corner corners[3];
   std::uint16_t numbers[3];
   for (int k = 0; k < 3; ++k)
   {
-    unsigned char* corner = corners[k];
-    std::memcpy(corner, triangle.V[k], 3 * sizeof(float));
-    std::memcpy(corner + 3 * sizeof(float), triangle.Normals[k], 2 * sizeof(std::int16_t));
-    std::memcpy(corner + PositionNormalBytes, triangle.Colors[k], CornerBytes - PositionNormalBytes);
-    const CornerKey key = KeyOf(corner);
+    corners[k] = CornerOf(triangle, k);
     int number = -1;
     for (int j = 0; j < 3 && bucket.HasLast && number < 0; ++j)
     {
-      number = SameCorner(bucket.LastCorners[j], key, corner, CornerBytes) ? int(bucket.LastNumbers[j]) : -1;
+      number = bucket.LastCorners[j] == corners[k] ? int(bucket.LastNumbers[j]) : -1;
     }
-    number = number >= 0 ? number : CornerIndex(frame, corner);
+    number = number >= 0 ? number : CornerIndex(frame, corners[k]);
     if (number < 0)
     {
       // Full: forget the corners this triangle added, it goes to a new page.
@@ -319,13 +317,12 @@ bool BucketStore::AddToPage(std::size_t frame, const SoupTriangle& triangle, Buc
       return false;
     }
     numbers[k] = std::uint16_t(number);
+    PutU16(record + 2 * k, numbers[k]);
   }
-  unsigned char* record = page + PageBytes - (std::size_t(triangles) + 1) * TriangleBytes;
-  std::memcpy(record, numbers, sizeof(numbers));
   record[6] = triangle.BoundaryEdges;
   PutU16(page + 2, std::uint16_t(triangles + 1));
-  std::memcpy(bucket.LastCorners, corners, sizeof(corners));
-  std::memcpy(bucket.LastNumbers, numbers, sizeof(numbers));
+  std::copy(std::begin(corners), std::end(corners), bucket.LastCorners);
+  std::copy(std::begin(numbers), std::end(numbers), bucket.LastNumbers);
   bucket.HasLast = true;
   return true;
 }

@@ -64,8 +64,18 @@ private:
   using PageIndex = std::uint32_t;
   static constexpr std::int32_t NotResident = -1;
 
-  /// The most bytes a corner takes: position, normal, color.
-  static constexpr std::size_t MaxCornerBytes = 20;
+  /// A corner as words: the bytes of its position and normal (its key), and of its color
+  /// (0 when colors are not kept). Built from a triangle's fields without a byte buffer, whose
+  /// narrow stores read back as words stall the processor.
+  struct Corner
+  {
+    std::uint64_t Low = 0, High = 0;
+    std::uint32_t Color = 0;
+    bool operator==(const Corner& o) const
+    {
+      return Low == o.Low && High == o.High && Color == o.Color;
+    }
+  };
   struct Bucket
   {
     std::vector<PageIndex> Pages;
@@ -73,8 +83,8 @@ private:
     /// The corners of the last triangle appended and their numbers in the last page (none
     /// after a new page starts): the next triangle, a stream neighbour, mostly shares them,
     /// and finding them here touches no page memory.
-    unsigned char LastCorners[3][MaxCornerBytes];
-    std::uint16_t LastNumbers[3];
+    Corner LastCorners[3];
+    std::uint16_t LastNumbers[3] = { 0, 0, 0 };
     bool HasLast = false;
   };
   enum class FrameState : char
@@ -96,8 +106,12 @@ private:
   std::size_t FreeFrame();
   /// Adds the triangle to the page in `frame` if its new corners fit; false when full.
   bool AddToPage(std::size_t frame, const SoupTriangle& triangle, Bucket& bucket);
+  /// Corner k of the triangle as words.
+  Corner CornerOf(const SoupTriangle& triangle, int k) const;
+  /// The corner stored at `bytes` in a page.
+  Corner CornerAt(const unsigned char* bytes) const;
   /// The corner's number in the page in `frame`, added if new; -1 when it does not fit.
-  int CornerIndex(std::size_t frame, const unsigned char* corner);
+  int CornerIndex(std::size_t frame, const Corner& corner);
   /// Fills in the corner lookup of the page in `frame` from its corners.
   void IndexCorners(std::size_t frame);
   /// Appends the triangles of one page to `out`.
