@@ -43,10 +43,8 @@ void Partitioner::Redistribute(TetraForest::NodeIndex splitNode)
 
 void Partitioner::Insert(const SoupTriangle* triangles, std::size_t count)
 {
-  const auto redistribute = [this](TetraForest::NodeIndex n) { Redistribute(n); };
   constexpr std::size_t Group = 256;
   double centroids[Group][3];
-  TetraForest::NodeIndex leaves[Group];
   for (std::size_t first = 0; first < count; first += Group)
   {
     const std::size_t n = std::min(Group, count - first);
@@ -54,12 +52,25 @@ void Partitioner::Insert(const SoupTriangle* triangles, std::size_t count)
     {
       Centroid(triangles[first + i], centroids[i]);
     }
+    Insert(triangles + first, centroids, n);
+  }
+}
+
+void Partitioner::Insert(const SoupTriangle* triangles, const double (*centroids)[3], std::size_t count)
+{
+  const auto redistribute = [this](TetraForest::NodeIndex n) { Redistribute(n); };
+  constexpr std::size_t Group = 256;
+  TetraForest::NodeIndex leaves[Group];
+  for (std::size_t first = 0; first < count; first += Group)
+  {
+    const std::size_t n = std::min(Group, count - first);
     // Located against the forest as it stands; a leaf split by an earlier triangle of the
     // group is finished by Descend below, so the result is the same as one at a time.
-    Tetrahedra.LeavesContaining(centroids, leaves, n);
+    Tetrahedra.LeavesContaining(centroids + first, leaves, n, Hint);
     for (std::size_t i = 0; i < n; ++i)
     {
-      TetraForest::NodeIndex leaf = Tetrahedra.Descend(leaves[i], centroids[i]);
+      const double* centroid = centroids[first + i];
+      TetraForest::NodeIndex leaf = Tetrahedra.Descend(leaves[i], centroid);
       Buckets.Append(std::uint32_t(leaf), triangles[first + i]);
       ++Inserted;
       // Only the leaf that just grew can exceed the capacity; its children may too (all
@@ -67,7 +78,7 @@ void Partitioner::Insert(const SoupTriangle* triangles, std::size_t count)
       while (Buckets.Count(std::uint32_t(leaf)) > Settings.LeafCapacity &&
         Tetrahedra.SplitDiamond(leaf, redistribute))
       {
-        leaf = Tetrahedra.Descend(leaf, centroids[i]);
+        leaf = Tetrahedra.Descend(leaf, centroid);
       }
     }
   }

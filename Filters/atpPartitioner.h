@@ -45,6 +45,9 @@ public:
   Partitioner(const Box& bounds, const PartitionOptions& options);
 
   void Insert(const SoupTriangle* triangles, std::size_t count);
+  /// Insert, with the triangles' centroids given (Centroid of each): a thread that reads the
+  /// input computes them while this one inserts the batch before.
+  void Insert(const SoupTriangle* triangles, const double (*centroids)[3], std::size_t count);
 
   const TetraForest& Forest() const { return Tetrahedra; }
   const LatticeFrame& Frame() const { return Lattice; }
@@ -63,6 +66,7 @@ public:
   const PartitionOptions& Options() const { return Settings; }
 
   /// The triangle's centroid in lattice coordinates: the one point that decides its leaf.
+  /// Thread-safe.
   void Centroid(const SoupTriangle& t, double out[3]) const;
 
 private:
@@ -73,6 +77,7 @@ private:
   TetraForest Tetrahedra;
   BucketStore Buckets;
   std::vector<SoupTriangle> Moving; // reused buffer for the triangles of a split leaf
+  TetraForest::LeafHint Hint;
   std::uint64_t Inserted = 0;
   std::uint64_t Splits = 0;
 };

@@ -1,6 +1,7 @@
 #include "atpTetraForest.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace atp
@@ -93,37 +94,91 @@ bool TetraForest::SplitDiamond(NodeIndex node, const std::function<void(NodeInde
   return true;
 }
 
-void TetraForest::LeavesContaining(
-  const double (*points)[3], NodeIndex* leaves, std::size_t count) const
+void TetraForest::LeafHint::Set(const TetraForest& forest, NodeIndex leaf)
 {
-  constexpr std::size_t Lanes = 8;
-  std::size_t first = 0;
-  for (; first + Lanes <= count; first += Lanes)
+  static constexpr int Faces[4][4] = { { 1, 2, 3, 0 }, { 0, 2, 3, 1 }, { 0, 1, 3, 2 },
+    { 0, 1, 2, 3 } };
+  const Tetra& t = forest[leaf].Geometry;
+  for (int f = 0; f < 4; ++f)
   {
-    NodeIndex n[Lanes];
-    for (std::size_t l = 0; l < Lanes; ++l)
+    // Lattice coordinates below 2^20: the edge vectors and their cross product are exact.
+    double a[3], e1[3], e2[3], inside[3];
+    for (int i = 0; i < 3; ++i)
     {
-      n[l] = RootContaining(points[first + l]);
+      a[i] = t.V[std::size_t(Faces[f][0])][std::size_t(i)];
+      e1[i] = t.V[std::size_t(Faces[f][1])][std::size_t(i)] - a[i];
+      e2[i] = t.V[std::size_t(Faces[f][2])][std::size_t(i)] - a[i];
+      inside[i] = t.V[std::size_t(Faces[f][3])][std::size_t(i)] - a[i];
+    }
+    double n[3] = { e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+      e1[0] * e2[1] - e1[1] * e2[0] };
+    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double toward = n[0] * inside[0] + n[1] * inside[1] + n[2] * inside[2] > 0 ? 1 : -1;
+    double* plane = this->Planes[f];
+    for (int i = 0; i < 3; ++i)
+    {
+      plane[i] = toward * n[i] / length;
+    }
+    plane[3] = -(plane[0] * a[0] + plane[1] * a[1] + plane[2] * a[2]);
+  }
+  this->Leaf = leaf;
+}
+
+void TetraForest::LeavesContaining(
+  const double (*points)[3], NodeIndex* leaves, std::size_t count, LeafHint& hint) const
+{
+  // The points the hint does not hold, descended 8 at a time.
+  constexpr std::size_t Lanes = 8;
+  std::size_t pending[Lanes];
+  std::size_t waiting = 0;
+  const auto descend = [&]() {
+    NodeIndex n[Lanes];
+    for (std::size_t l = 0; l < waiting; ++l)
+    {
+      n[l] = RootContaining(points[pending[l]]);
     }
     for (bool descending = true; descending;)
     {
       descending = false;
-      for (std::size_t l = 0; l < Lanes; ++l)
+      for (std::size_t l = 0; l < waiting; ++l)
       {
         const Node& node = Nodes[std::size_t(n[l])];
         if (!node.IsLeaf())
         {
-          n[l] = node.Children[node.Plane.ChildContaining(points[first + l])];
+          n[l] = node.Children[node.Plane.ChildContaining(points[pending[l]])];
           descending = true;
         }
       }
     }
-    std::copy(n, n + Lanes, leaves + first);
-  }
-  for (; first < count; ++first)
+    for (std::size_t l = 0; l < waiting; ++l)
+    {
+      leaves[pending[l]] = n[l];
+    }
+    if (waiting > 0 && n[waiting - 1] != hint.Leaf)
+    {
+      hint.Set(*this, n[waiting - 1]);
+    }
+    waiting = 0;
+  };
+  bool lastHeld = true;
+  for (std::size_t i = 0; i < count; ++i)
   {
-    leaves[first] = LeafContaining(points[first]);
+    if (waiting == 0 && hint.Holds(*this, points[i]))
+    {
+      leaves[i] = hint.Leaf;
+      lastHeld = true;
+      continue;
+    }
+    pending[waiting++] = i;
+    // A miss after a hit mostly starts a run in another leaf: found at once, the hint follows
+    // it. Misses in a row (a stream without order) are descended together.
+    if (lastHeld || waiting == Lanes)
+    {
+      descend();
+    }
+    lastHeld = false;
   }
+  descend();
 }
 
 std::vector<TetraForest::NodeIndex> TetraForest::Leaves() const

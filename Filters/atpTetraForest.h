@@ -51,9 +51,45 @@ public:
     return n;
   }
   NodeIndex LeafContaining(const double p[3]) const { return Descend(RootContaining(p), p); }
-  /// LeafContaining for many points at once: the descents are interleaved so the processor
-  /// overlaps their dependent plane tests (several times faster than one after the other).
-  void LeavesContaining(const double (*points)[3], NodeIndex* leaves, std::size_t count) const;
+
+  /// The last leaf found and its face planes: a point of a streamed mesh is mostly in the
+  /// leaf of the point before it, and telling that takes four plane tests, not a descent.
+  class LeafHint
+  {
+  public:
+    /// Whether p is inside `leaf` (still a leaf) by far more than the rounding of any plane
+    /// test: then every descent from the roots ends in it, whatever side points on a split
+    /// plane take.
+    bool Holds(const TetraForest& forest, const double p[3]) const
+    {
+      if (this->Leaf == None || !forest[this->Leaf].IsLeaf())
+      {
+        return false;
+      }
+      for (const auto& plane : this->Planes)
+      {
+        if (plane[0] * p[0] + plane[1] * p[1] + plane[2] * p[2] + plane[3] <= Margin)
+        {
+          return false;
+        }
+      }
+      return true;
+    }
+    void Set(const TetraForest& forest, NodeIndex leaf);
+    NodeIndex Leaf = None;
+
+  private:
+    /// In lattice units (the lattice spans 2^20): plane tests round by about 2^-31.
+    static constexpr double Margin = 1e-6;
+    /// Unit normals pointing inside, and offsets: distance from each face.
+    double Planes[4][4] = {};
+  };
+
+  /// LeafContaining for many points at once: points that `hint` holds need no descent, the
+  /// other descents are interleaved so the processor overlaps their dependent plane tests
+  /// (several times faster than one after the other). The hint moves to the last leaf found.
+  void LeavesContaining(
+    const double (*points)[3], NodeIndex* leaves, std::size_t count, LeafHint& hint) const;
 
   /// Splits the whole diamond of the leaf `node`. Members that do not exist yet are created
   /// first by splitting the coarser diamonds they need (recursively, parents before children),

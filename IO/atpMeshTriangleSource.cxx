@@ -1,10 +1,12 @@
 #include "atpMeshTriangleSource.h"
 
 #include "atpNormalEncoding.h"
+#include "atpProduceConsume.h"
 #include "atpResidentPages.h"
 
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 namespace atp
 {
@@ -45,6 +47,14 @@ std::array<double, 3> AreaNormal(const float v[3][3])
   }
   return { { e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0] } };
 }
+
+/// Kept triangles of the first pass and their area normals, as added to the normal sums.
+struct FirstPassBatch
+{
+  static constexpr std::size_t Capacity = 1 << 16;
+  std::vector<std::array<std::uint32_t, 3>> Triangles;
+  std::vector<std::array<float, 3>> AreaNormals;
+};
 
 } // namespace
 
@@ -92,40 +102,62 @@ bool MeshTriangleSource::Keep(const std::uint32_t triangle[3], float corners[3][
 
 void MeshTriangleSource::FirstPass()
 {
-  PolygonBatch batch;
-  while (this->Mesh->NextBatch(batch))
-  {
-    this->Statistics.FacesRead += batch.Count;
-    for (std::size_t k = 0; k < batch.Count; ++k)
-    {
-      this->Statistics.DegenerateDropped += batch.Sizes[k] < 3;
-    }
-    this->Fans.Reset(batch);
-    std::uint32_t triangle[3];
-    float corners[3][3];
-    while (this->Fans.Next(triangle))
-    {
-      this->BoundResidentMemory();
-      if (this->Keep(triangle, corners))
+  // One thread reads the faces and fetches their corners while this one adds them to the
+  // sketch and the normal sums, in face order: the sums come out bit for bit as one thread's.
+  bool facesLeft = true;
+  ProduceConsume<FirstPassBatch>(
+    3,
+    [&](FirstPassBatch& batch) {
+      batch.Triangles.clear();
+      batch.AreaNormals.clear();
+      std::uint32_t triangle[3];
+      float corners[3][3];
+      while (batch.Triangles.size() < FirstPassBatch::Capacity)
       {
-        this->Sketch.AddTriangle(triangle[0], triangle[1], triangle[2]);
-        const std::array<double, 3> normal = AreaNormal(corners);
-        for (int c = 0; c < 3; ++c)
+        if (!this->Fans.Next(triangle))
         {
-          std::array<float, 3>& sum = this->NormalSums[triangle[c]];
+          PolygonBatch polygons;
+          facesLeft = facesLeft && this->Mesh->NextBatch(polygons);
+          if (!facesLeft)
+          {
+            break;
+          }
+          this->Statistics.FacesRead += polygons.Count;
+          for (std::size_t k = 0; k < polygons.Count; ++k)
+          {
+            this->Statistics.DegenerateDropped += polygons.Sizes[k] < 3;
+          }
+          this->Fans.Reset(polygons);
+          continue;
+        }
+        this->BoundResidentMemory();
+        if (!this->Keep(triangle, corners))
+        {
+          ++this->Statistics.DegenerateDropped;
+          continue;
+        }
+        const std::array<double, 3> normal = AreaNormal(corners);
+        batch.Triangles.push_back({ { triangle[0], triangle[1], triangle[2] } });
+        batch.AreaNormals.push_back({ { float(normal[0]), float(normal[1]), float(normal[2]) } });
+      }
+      this->KeptTriangles += batch.Triangles.size();
+      return !batch.Triangles.empty();
+    },
+    [&](const FirstPassBatch& batch) {
+      for (std::size_t i = 0; i < batch.Triangles.size(); ++i)
+      {
+        const std::array<std::uint32_t, 3>& triangle = batch.Triangles[i];
+        this->Sketch.AddTriangle(triangle[0], triangle[1], triangle[2]);
+        for (const std::uint32_t corner : triangle)
+        {
+          std::array<float, 3>& sum = this->NormalSums[corner];
           for (int a = 0; a < 3; ++a)
           {
-            sum[a] += float(normal[a]);
+            sum[a] += batch.AreaNormals[i][std::size_t(a)];
           }
         }
-        ++this->KeptTriangles;
       }
-      else
-      {
-        ++this->Statistics.DegenerateDropped;
-      }
-    }
-  }
+    });
   if (this->KeptTriangles == 0)
   {
     throw InputError(this->Path + ": empty mesh (no triangles: " +

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <random>
 
 using namespace atp;
@@ -113,19 +115,89 @@ TEST(Forest, FindAndLocateAgree)
     EXPECT_EQ(forest.Find(forest[leaf].Id), leaf);
     EXPECT_EQ(Locate(p, forest[leaf].Id.Level()), forest[leaf].Id);
   }
-  // The interleaved batch descent agrees with one descent at a time (odd count: a tail too).
+  // The batch location agrees with one descent at a time: on random points (interleaved
+  // descents, an odd count: a tail too), on a random walk (mostly the hint's leaf) and on the
+  // leaves' own corners and face centers, where the hint must step back for the descent's rule.
   std::vector<std::array<double, 3>> points(1001);
   for (auto& p : points)
   {
     p = { coordinate(rng), coordinate(rng), coordinate(rng) };
   }
+  std::array<double, 3> walker = points[0];
+  std::normal_distribution<double> step(0, LatticeSize / 4000.0);
+  for (int i = 0; i < 3000; ++i)
+  {
+    for (double& x : walker)
+    {
+      x = std::min(double(LatticeSize), std::max(0.0, x + step(rng)));
+    }
+    points.push_back(walker);
+  }
+  for (const auto leaf : forest.Leaves())
+  {
+    const Tetra& t = forest[leaf].Geometry;
+    for (int v = 0; v < 4; ++v)
+    {
+      const std::array<double, 3> corner = { double(t.V[std::size_t(v)][0]), double(t.V[std::size_t(v)][1]), double(t.V[std::size_t(v)][2]) };
+      points.push_back(corner);
+      std::array<double, 3> face{};
+      for (int w = 0; w < 4; ++w)
+      {
+        for (int a = 0; a < 3 && w != v; ++a)
+        {
+          face[std::size_t(a)] += t.V[std::size_t(w)][std::size_t(a)] / 3.0;
+        }
+      }
+      points.push_back(forest[leaf].Geometry.Centroid());
+      points.push_back(face);
+    }
+  }
   std::vector<TetraForest::NodeIndex> leaves(points.size());
+  TetraForest::LeafHint hint;
   forest.LeavesContaining(
-    reinterpret_cast<const double(*)[3]>(points.data()), leaves.data(), points.size());
+    reinterpret_cast<const double(*)[3]>(points.data()), leaves.data(), points.size(), hint);
   for (std::size_t i = 0; i < points.size(); ++i)
   {
-    EXPECT_EQ(leaves[i], forest.LeafContaining(points[i].data()));
+    EXPECT_EQ(leaves[i], forest.LeafContaining(points[i].data())) << "point " << i;
   }
+}
+
+TEST(TetraForest, LeafHintHoldsOnlyPointsWellInsideALeafThatIsStillALeaf)
+{
+  TetraForest forest;
+  const TetraForest::NodeIndex root = 2;
+  TetraForest::LeafHint hint;
+  const std::array<double, 3> centroid = forest[root].Geometry.Centroid();
+  EXPECT_FALSE(hint.Holds(forest, centroid.data())) << "no leaf yet";
+  hint.Set(forest, root);
+  EXPECT_TRUE(hint.Holds(forest, centroid.data()));
+  const Tetra& t = forest[root].Geometry;
+  for (int v = 0; v < 4; ++v)
+  {
+    const std::array<double, 3> corner = { double(t.V[std::size_t(v)][0]), double(t.V[std::size_t(v)][1]), double(t.V[std::size_t(v)][2]) };
+    EXPECT_FALSE(hint.Holds(forest, corner.data())) << "corner " << v;
+    // Halfway between the centroid and the corner: inside. 1e-7 lattice units from the
+    // corner toward the centroid: inside too, but within the margin of three faces.
+    std::array<double, 3> half, nearCorner;
+    double length = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      length += (centroid[std::size_t(a)] - corner[std::size_t(a)]) * (centroid[std::size_t(a)] - corner[std::size_t(a)]);
+    }
+    length = std::sqrt(length);
+    for (int a = 0; a < 3; ++a)
+    {
+      half[std::size_t(a)] = 0.5 * (centroid[std::size_t(a)] + corner[std::size_t(a)]);
+      nearCorner[std::size_t(a)] = corner[std::size_t(a)] + 1e-7 / length * (centroid[std::size_t(a)] - corner[std::size_t(a)]);
+    }
+    ASSERT_TRUE(forest[root].Geometry.Contains(nearCorner.data()));
+    EXPECT_TRUE(hint.Holds(forest, half.data()));
+    EXPECT_FALSE(hint.Holds(forest, nearCorner.data()));
+  }
+  const std::array<double, 3> outside = { -1, -1, -1 };
+  EXPECT_FALSE(hint.Holds(forest, outside.data()));
+  forest.SplitDiamond(root, [](TetraForest::NodeIndex) {});
+  EXPECT_FALSE(hint.Holds(forest, centroid.data())) << "the leaf was split";
 }
 
 // The checks must be able to fail: break a diamond on purpose.

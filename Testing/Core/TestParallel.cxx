@@ -1,6 +1,7 @@
 // The ordered pipeline behind construction's threads: loads and stores in index order on the
 // caller, work on every thread, a bounded window, errors in index order, no deadlock.
 #include "atpParallel.h"
+#include "atpProduceConsume.h"
 
 #include <gtest/gtest.h>
 
@@ -123,4 +124,134 @@ TEST(OrderedPipeline, ALoadOrStoreErrorStopsAtOnce)
     std::runtime_error);
   EXPECT_NO_THROW(atp::OrderedPipeline(
     0, 2, 4, [](std::size_t) {}, [](std::size_t) {}, [](std::size_t) {}));
+}
+
+// ProduceConsume: the two-thread hand-off of input reading (first pass, partitioning).
+namespace
+{
+struct Numbers
+{
+  std::vector<int> Values;
+};
+} // namespace
+
+TEST(ProduceConsume, ConsumesEveryBatchInOrderOnTheCallerWithBoundedBatches)
+{
+  const std::thread::id caller = std::this_thread::get_id();
+  std::set<const Numbers*> batchesSeen;
+  std::atomic<int> produced{ 0 };
+  int consumed = 0, next = 0;
+  std::vector<int> values;
+  atp::ProduceConsume<Numbers>(
+    2,
+    [&](Numbers& batch) {
+      EXPECT_NE(std::this_thread::get_id(), caller);
+      if (produced == 100)
+      {
+        return false;
+      }
+      batch.Values.assign(3, 0);
+      for (int& v : batch.Values)
+      {
+        v = next++;
+      }
+      ++produced;
+      return true;
+    },
+    [&](const Numbers& batch) {
+      EXPECT_EQ(std::this_thread::get_id(), caller);
+      batchesSeen.insert(&batch);
+      // The producer waits for a batch back: it is never more than two ahead.
+      EXPECT_LE(produced.load(), consumed + 2);
+      values.insert(values.end(), batch.Values.begin(), batch.Values.end());
+      ++consumed;
+      std::this_thread::sleep_for(std::chrono::microseconds(consumed % 7 * 50));
+    });
+  EXPECT_EQ(consumed, 100);
+  EXPECT_EQ(batchesSeen.size(), 2u) << "batches are recycled";
+  ASSERT_EQ(values.size(), 300u);
+  for (int i = 0; i < 300; ++i)
+  {
+    EXPECT_EQ(values[std::size_t(i)], i);
+  }
+}
+
+TEST(ProduceConsume, AProducerErrorReachesTheCallerAfterTheBatchesBeforeIt)
+{
+  int produced = 0;
+  std::vector<int> consumed;
+  EXPECT_THROW(atp::ProduceConsume<Numbers>(
+                 3,
+                 [&](Numbers& batch) {
+                   if (produced == 5)
+                   {
+                     throw std::runtime_error("malformed input");
+                   }
+                   batch.Values = { produced++ };
+                   return true;
+                 },
+                 [&](const Numbers& batch) { consumed.push_back(batch.Values[0]); }),
+    std::runtime_error);
+  EXPECT_EQ(consumed, std::vector<int>({ 0, 1, 2, 3, 4 }));
+}
+
+TEST(ProduceConsume, AConsumerErrorStopsAnEndlessProducer)
+{
+  // The producer never ends by itself: only the consumer's error can stop it, and must.
+  std::atomic<bool> producerRan{ false };
+  int consumed = 0;
+  try
+  {
+    atp::ProduceConsume<Numbers>(
+      2,
+      [&](Numbers& batch) {
+        producerRan = true;
+        batch.Values = { 1 };
+        return true;
+      },
+      [&](const Numbers&) {
+        if (++consumed == 10)
+        {
+          throw std::runtime_error("disk full");
+        }
+      });
+    ADD_FAILURE() << "no exception";
+  }
+  catch (const std::runtime_error& e)
+  {
+    EXPECT_EQ(std::string(e.what()), "disk full");
+  }
+  EXPECT_TRUE(producerRan);
+  EXPECT_EQ(consumed, 10);
+}
+
+TEST(ProduceConsume, TheConsumersErrorWinsWhenBothFail)
+{
+  std::atomic<int> produced{ 0 };
+  std::atomic<bool> producerFailed{ false };
+  try
+  {
+    atp::ProduceConsume<Numbers>(
+      2,
+      [&](Numbers&) {
+        if (++produced == 2)
+        {
+          producerFailed = true;
+          throw std::runtime_error("producer");
+        }
+        return true;
+      },
+      [&](const Numbers&) {
+        while (!producerFailed)
+        {
+          std::this_thread::yield();
+        }
+        throw std::runtime_error("consumer");
+      });
+    ADD_FAILURE() << "no exception";
+  }
+  catch (const std::runtime_error& e)
+  {
+    EXPECT_EQ(std::string(e.what()), "consumer");
+  }
 }
