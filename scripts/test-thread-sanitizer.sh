@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The threaded parts (construction's ordered pipeline and a threaded build; rendering's
+# The threaded parts (the input's two-thread passes and partitioning; construction's ordered
+# pipeline and a threaded build; rendering's
 # background decoding, prefetching and the mapper that drives them) under ThreadSanitizer, in
 # build-tsan/. Fails on any report.
 set -euo pipefail
@@ -8,9 +9,11 @@ build_dir=build-tsan
 if [ ! -f "$build_dir/build.ninja" ]; then
   cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DATP_SANITIZE=thread
 fi
-cmake --build "$build_dir" -j "$(nproc)" --target TestParallel TestConstruction TestRenderingCore TestMapper
+cmake --build "$build_dir" -j "$(nproc)" --target TestParallel TestTriangleSources TestPartitioner TestConstruction TestRenderingCore TestMapper
 export TSAN_OPTIONS="halt_on_error=1 abort_on_error=1 suppressions=$PWD/Testing/tsan.supp"
 "$build_dir/tests/TestParallel"
+"$build_dir/tests/TestTriangleSources"
+"$build_dir/tests/TestPartitioner" --gtest_filter='*Stream*'
 "$build_dir/tests/TestConstruction" --gtest_filter='*ThreadCount*'
 "$build_dir/tests/TestRenderingCore"
 xvfb-run -a "$build_dir/tests/TestMapper"
