@@ -4,6 +4,11 @@
 
 namespace atp
 {
+namespace
+{
+/// Triangles located together (interleaved descents), and centroids computed at a time.
+constexpr std::size_t Group = 256;
+}
 
 Partitioner::Partitioner(const Box& bounds, const PartitionOptions& options)
   : Settings(options)
@@ -43,7 +48,6 @@ void Partitioner::Redistribute(TetraForest::NodeIndex splitNode)
 
 void Partitioner::Insert(const SoupTriangle* triangles, std::size_t count)
 {
-  constexpr std::size_t Group = 256;
   double centroids[Group][3];
   for (std::size_t first = 0; first < count; first += Group)
   {
@@ -59,7 +63,6 @@ void Partitioner::Insert(const SoupTriangle* triangles, std::size_t count)
 void Partitioner::Insert(const SoupTriangle* triangles, const double (*centroids)[3], std::size_t count)
 {
   const auto redistribute = [this](TetraForest::NodeIndex n) { Redistribute(n); };
-  constexpr std::size_t Group = 256;
   TetraForest::NodeIndex leaves[Group];
   for (std::size_t first = 0; first < count; first += Group)
   {

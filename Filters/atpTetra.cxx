@@ -136,8 +136,6 @@ SplitPlane Tetra::Plane() const
 
 bool Tetra::Contains(const double p[3]) const
 {
-  static constexpr int Faces[4][4] = { { 1, 2, 3, 0 }, { 0, 2, 3, 1 }, { 0, 1, 3, 2 },
-    { 0, 1, 2, 3 } };
   for (const auto& f : Faces)
   {
     const auto opposite = ToDouble(V[f[3]]);

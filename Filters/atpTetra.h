@@ -83,6 +83,9 @@ struct Tetra
   /// Which child contains point p (lattice coordinates); points on the split plane go to child 0.
   int ChildContaining(const double p[3]) const { return Plane().ChildContaining(p); }
   bool Contains(const double p[3]) const;
+  /// The four faces as vertex numbers: three corners, then the opposite vertex.
+  static constexpr int Faces[4][4] = { { 1, 2, 3, 0 }, { 0, 2, 3, 1 }, { 0, 1, 3, 2 },
+    { 0, 1, 2, 3 } };
   /// Six times the signed volume is exact in 64 bits only near the leaves; volume in double.
   double Volume() const;
   std::array<double, 3> Centroid() const;

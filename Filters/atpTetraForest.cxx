@@ -96,8 +96,6 @@ bool TetraForest::SplitDiamond(NodeIndex node, const std::function<void(NodeInde
 
 void TetraForest::LeafHint::Set(const TetraForest& forest, NodeIndex leaf)
 {
-  static constexpr int Faces[4][4] = { { 1, 2, 3, 0 }, { 0, 2, 3, 1 }, { 0, 1, 3, 2 },
-    { 0, 1, 2, 3 } };
   const Tetra& t = forest[leaf].Geometry;
   for (int f = 0; f < 4; ++f)
   {
@@ -105,10 +103,10 @@ void TetraForest::LeafHint::Set(const TetraForest& forest, NodeIndex leaf)
     double a[3], e1[3], e2[3], inside[3];
     for (int i = 0; i < 3; ++i)
     {
-      a[i] = t.V[std::size_t(Faces[f][0])][std::size_t(i)];
-      e1[i] = t.V[std::size_t(Faces[f][1])][std::size_t(i)] - a[i];
-      e2[i] = t.V[std::size_t(Faces[f][2])][std::size_t(i)] - a[i];
-      inside[i] = t.V[std::size_t(Faces[f][3])][std::size_t(i)] - a[i];
+      a[i] = t.V[std::size_t(Tetra::Faces[f][0])][std::size_t(i)];
+      e1[i] = t.V[std::size_t(Tetra::Faces[f][1])][std::size_t(i)] - a[i];
+      e2[i] = t.V[std::size_t(Tetra::Faces[f][2])][std::size_t(i)] - a[i];
+      inside[i] = t.V[std::size_t(Tetra::Faces[f][3])][std::size_t(i)] - a[i];
     }
     double n[3] = { e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
       e1[0] * e2[1] - e1[1] * e2[0] };
