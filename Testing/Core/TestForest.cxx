@@ -117,7 +117,8 @@ TEST(Forest, FindAndLocateAgree)
   }
   // The batch location agrees with one descent at a time: on random points (interleaved
   // descents, an odd count: a tail too), on a random walk (mostly the hint's leaf) and on the
-  // leaves' own corners and face centers, where the hint must step back for the descent's rule.
+  // leaves' own corners and face centers, where the hint must step back for the descent's rule,
+  // each followed by its leaf's centroid (a hit right after a miss).
   std::vector<std::array<double, 3>> points(1001);
   for (auto& p : points)
   {
