@@ -270,7 +270,7 @@ int Generate(int argc, char** argv)
     "Writes a large test surface (a torus with bumps at several scales) as binary PLY,\n"
     "streaming, so inputs of any size can be made for benchmarks.");
   cl.AddOption("output", "o", "OUT.ply", "PLY file to write");
-  cl.AddOption("triangles", "n", "N", "approximate number of triangles", "1000000");
+  cl.AddOption("triangles", "n", "N", "number of triangles (at least; holes remove some)", "1000000");
   cl.AddOption("holes", "", "K", "rectangular holes to punch, giving mesh borders", "0");
   if (!cl.Parse(Rest(argc, argv)))
   {

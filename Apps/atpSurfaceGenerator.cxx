@@ -99,10 +99,11 @@ bool InHole(std::uint64_t i, std::uint64_t j, std::uint64_t nu, std::uint64_t nv
 
 std::uint64_t WriteBumpyTorusPly(const std::string& path, const SurfaceOptions& options)
 {
-  // A closed nu x nv grid on the torus has 2 nu nv triangles; nu = 2 nv keeps cells square-ish.
-  const double cells = std::max<double>(8, double(options.Triangles) / 2);
+  // A closed nu x nv grid on the torus has 2 nu nv triangles; nu = 2 nv keeps cells square-ish,
+  // and nu is rounded up so that benchmarks asking for N triangles get at least N.
+  const double cells = std::max<double>(8, std::ceil(double(options.Triangles) / 2));
   const auto nv = std::uint64_t(std::max(4.0, std::round(std::sqrt(cells / 2))));
-  const auto nu = std::uint64_t(std::max(4.0, std::round(cells / double(nv))));
+  const auto nu = std::uint64_t(std::max(4.0, std::ceil(cells / double(nv))));
   if (nu * nv > std::uint64_t(INT32_MAX))
   {
     throw std::runtime_error(path + ": too many triangles for 32-bit PLY indices");

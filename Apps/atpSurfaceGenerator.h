@@ -11,7 +11,7 @@ namespace atp
 
 struct SurfaceOptions
 {
-  std::uint64_t Triangles = 1000000; ///< approximate target; the grid is rounded
+  std::uint64_t Triangles = 1000000; ///< at least this many (fewer with holes); the grid is rounded up
   int Holes = 0;                     ///< rectangular holes punched through, giving borders
 };
 

@@ -2,8 +2,8 @@
 # End-to-end construction figures: throughput, peak memory, temporary disk, bytes per triangle.
 #   bench/build.sh brain|TRIANGLES|MESH.ply [SCRATCH_DIR]
 # "brain": the MRI isosurface of ch2better.nii.gz (mricron-data) at 60, resampled 2x (9.1M
-# triangles). A number: a generated bumpy torus of about that many triangles (108000000 gives
-# 101M). A file: that mesh.
+# triangles). A number: a generated bumpy torus of at least that many triangles. A file: that
+# mesh.
 # Generated inputs go to SCRATCH_DIR (default a new directory under /tmp, removed afterwards).
 # The page cache is warmed, then `atp build` runs while the file system's used space is sampled,
 # so the temporary disk figure is measured, not estimated (the scratch files are unlinked and

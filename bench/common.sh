@@ -1,7 +1,7 @@
 # Sourced by the benchmark scripts: the machine line every figure is read against, and the mesh
 # the construction benchmarks read. WHAT is "brain" (the MRI
 # isosurface of ch2better.nii.gz from mricron-data at 60, resampled 2x: 9.1M triangles), a
-# triangle count (a generated bumpy torus of about that many) or a mesh file.
+# triangle count (a generated bumpy torus of at least that many) or a mesh file.
 
 # input_path WHAT SCRATCH: sets $input, WHAT itself for a file, else input.ply in SCRATCH.
 input_path() {
