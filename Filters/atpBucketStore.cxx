@@ -48,8 +48,9 @@ BucketStore::BucketStore(const std::string& scratchDirectory, std::size_t memory
   // At least a handful of frames so that a split (one bucket read, two appended) always fits.
   const std::size_t frameBytes = PageBytes + CornerTableSlots * sizeof(std::uint16_t);
   const std::size_t frames = std::max<std::size_t>(8, memoryBudgetBytes / frameBytes);
-  Pool.reset(new unsigned char[frames * PageBytes]);
-  CornerTables.reset(new std::uint16_t[frames * CornerTableSlots]);
+  Pool = HugePageBuffer(frames * PageBytes);
+  CornerTableMemory = HugePageBuffer(frames * CornerTableSlots * sizeof(std::uint16_t));
+  CornerTables = static_cast<std::uint16_t*>(CornerTableMemory.Data());
   CornersIndexed.assign(frames, 0);
   States.assign(frames, FrameState::Free);
   FramePage.assign(frames, -1);

@@ -13,6 +13,7 @@
 #ifndef atpBucketStore_h
 #define atpBucketStore_h
 
+#include "atpHugePageBuffer.h"
 #include "atpScratchFile.h"
 #include "atpTriangleSource.h"
 #include "vtkATPFiltersModule.h"
@@ -121,17 +122,21 @@ private:
   void StartEvictions();
   /// Waits for the batch in flight, if any, and frees its frames.
   void FinishWrites();
-  unsigned char* FrameData(std::size_t frame) const { return &Pool[frame * PageBytes]; }
+  unsigned char* FrameData(std::size_t frame) const
+  {
+    return static_cast<unsigned char*>(Pool.Data()) + frame * PageBytes;
+  }
 
   ScratchFile Disk;
   std::vector<Bucket> Buckets;
   /// Bytes of one corner: position, normal, and color when kept.
   const std::size_t CornerBytes;
-  // Default-initialized: pages of the pool cost memory only once they are used.
-  std::unique_ptr<unsigned char[]> Pool;
+  // Pages of the pool cost memory only once they are used; huge pages make filling it cheap.
+  HugePageBuffer Pool;
   /// Per frame, an open-addressing table from corner bytes to corner number + 1 (0: empty),
   /// for appending; valid only when CornersIndexed.
-  std::unique_ptr<std::uint16_t[]> CornerTables;
+  HugePageBuffer CornerTableMemory;
+  std::uint16_t* CornerTables = nullptr;
   std::vector<char> CornersIndexed;
   // Per frame: its state, the page it holds (or none), whether it changed since loaded, and
   // the clock's reference bit.

@@ -1,0 +1,106 @@
+// HugePageBuffer: zero-filled, aligned to a huge page, movable, advised for transparent huge
+// pages, and a request beyond the address space is refused.
+#include "atpHugePageBuffer.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <new>
+#include <sstream>
+#include <string>
+
+namespace
+{
+using atp::HugePageBuffer;
+
+TEST(HugePageBuffer, ZeroFilledAlignedAndWritable)
+{
+  const std::size_t bytes = 5 * HugePageBuffer::HugePageBytes + 123;
+  HugePageBuffer buffer(bytes);
+  ASSERT_NE(buffer.Data(), nullptr);
+  EXPECT_EQ(buffer.Size(), bytes);
+  EXPECT_EQ(std::uintptr_t(buffer.Data()) % HugePageBuffer::HugePageBytes, 0u);
+  auto* data = static_cast<std::uint8_t*>(buffer.Data());
+  std::size_t nonzero = 0;
+  for (std::size_t i = 0; i < bytes; ++i)
+  {
+    nonzero += data[i] != 0;
+    data[i] = std::uint8_t(i * 7);
+  }
+  EXPECT_EQ(nonzero, 0u);
+  for (std::size_t i = 0; i < bytes; i += 4099)
+  {
+    ASSERT_EQ(data[i], std::uint8_t(i * 7));
+  }
+}
+
+TEST(HugePageBuffer, EmptyAndMoved)
+{
+  HugePageBuffer empty;
+  EXPECT_EQ(empty.Data(), nullptr);
+  EXPECT_EQ(empty.Size(), 0u);
+  EXPECT_EQ(HugePageBuffer(0).Data(), nullptr);
+
+  HugePageBuffer first(1000);
+  static_cast<char*>(first.Data())[999] = 42;
+  void* const data = first.Data();
+  HugePageBuffer second(std::move(first));
+  EXPECT_EQ(first.Data(), nullptr);
+  EXPECT_EQ(second.Data(), data);
+  EXPECT_EQ(second.Size(), 1000u);
+  EXPECT_EQ(static_cast<char*>(second.Data())[999], 42);
+  second = HugePageBuffer(10);
+  EXPECT_EQ(second.Size(), 10u);
+  EXPECT_EQ(static_cast<char*>(second.Data())[9], 0);
+}
+
+TEST(HugePageBuffer, RefusesWhatTheAddressSpaceCannotHold)
+{
+  EXPECT_THROW(HugePageBuffer(std::numeric_limits<std::size_t>::max() - 100), std::bad_alloc);
+  EXPECT_THROW(HugePageBuffer(std::size_t(1) << 62), std::bad_alloc);
+}
+
+/// The "THPeligible" line of the mapping holding `address` in /proc/self/smaps: -1 if absent.
+int HugePageEligible(const void* address)
+{
+  std::ifstream smaps("/proc/self/smaps");
+  std::string line;
+  bool inside = false;
+  while (std::getline(smaps, line))
+  {
+    unsigned long long begin = 0, end = 0;
+    if (std::sscanf(line.c_str(), "%llx-%llx ", &begin, &end) == 2 && line.find(':') > line.find('-'))
+    {
+      inside = std::uintptr_t(address) >= begin && std::uintptr_t(address) < end;
+    }
+    else if (inside && line.rfind("THPeligible:", 0) == 0)
+    {
+      return std::stoi(line.substr(12));
+    }
+  }
+  return -1;
+}
+
+TEST(HugePageBuffer, AdvisedForHugePages)
+{
+  std::ifstream mode("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string modes;
+  std::getline(mode, modes);
+  if (modes.find("[madvise]") == std::string::npos && modes.find("[always]") == std::string::npos)
+  {
+    GTEST_SKIP() << "transparent huge pages are off on this machine: " << modes;
+  }
+  HugePageBuffer buffer(2 * HugePageBuffer::HugePageBytes);
+  static_cast<char*>(buffer.Data())[0] = 1;
+  const int eligible = HugePageEligible(buffer.Data());
+  if (eligible < 0)
+  {
+    GTEST_SKIP() << "this kernel's smaps has no THPeligible line";
+  }
+  EXPECT_EQ(eligible, 1);
+}
+
+} // namespace
