@@ -128,7 +128,8 @@ private:
   }
 
   ScratchFile Disk;
-  std::vector<Bucket> Buckets;
+  /// Indexed at random by every append: on huge pages.
+  std::vector<Bucket, HugePageAllocator<Bucket>> Buckets;
   /// Bytes of one corner: position, normal, and color when kept.
   const std::size_t CornerBytes;
   // Pages of the pool cost memory only once they are used; huge pages make filling it cheap.

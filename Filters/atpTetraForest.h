@@ -3,6 +3,7 @@
 #ifndef atpTetraForest_h
 #define atpTetraForest_h
 
+#include "atpHugePageBuffer.h"
 #include "atpTetra.h"
 #include "vtkATPFiltersModule.h"
 
@@ -105,7 +106,8 @@ private:
   /// Finds the node of `id`, splitting coarser diamonds until it exists.
   NodeIndex Materialize(TetId id, const std::function<void(NodeIndex)>& onSplit);
 
-  std::vector<Node> Nodes;
+  /// Indexed at random by every point location: on huge pages (atpHugePageBuffer.h).
+  std::vector<Node, HugePageAllocator<Node>> Nodes;
   int DeepestLevel = 0;
 };
 

@@ -1,71 +1,91 @@
 #include "atpHugePageBuffer.h"
 
 #include <cstdint>
-#include <new>
+#include <cstring>
 #include <sys/mman.h>
 #include <utility>
 
 namespace atp
 {
-
-HugePageBuffer::HugePageBuffer(std::size_t bytes)
-  : Bytes(bytes)
+namespace
 {
-  if (bytes == 0)
-  {
-    return;
-  }
-  // One huge page more than asked for, to start on a huge page boundary.
+std::size_t RoundedToHugePages(std::size_t bytes)
+{
   const std::size_t rounded = (bytes + HugePageBytes - 1) / HugePageBytes * HugePageBytes;
   if (rounded < bytes || rounded + HugePageBytes < rounded)
   {
     throw std::bad_alloc();
   }
-  this->MappedBytes = rounded + HugePageBytes;
-  void* mapping = ::mmap(nullptr, this->MappedBytes, PROT_READ | PROT_WRITE,
-    MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  return rounded;
+}
+} // namespace
+
+void* AllocateLarge(std::size_t bytes)
+{
+  if (bytes < HugePageBytes)
+  {
+    void* memory = ::operator new(bytes == 0 ? 1 : bytes);
+    std::memset(memory, 0, bytes);
+    return memory;
+  }
+  // A huge page more than needed, then the unaligned ends cut off.
+  const std::size_t rounded = RoundedToHugePages(bytes);
+  const std::size_t mapped = rounded + HugePageBytes;
+  void* mapping = ::mmap(nullptr, mapped, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (mapping == MAP_FAILED)
   {
     throw std::bad_alloc();
   }
-  this->Mapping = mapping;
   const std::uintptr_t start = std::uintptr_t(mapping);
-  this->Aligned =
-    reinterpret_cast<void*>((start + HugePageBytes - 1) / HugePageBytes * HugePageBytes);
-  // Advice only: without huge pages (disabled, or another kernel) the buffer works the same.
-  ::madvise(this->Aligned, rounded, MADV_HUGEPAGE);
+  const std::uintptr_t aligned = (start + HugePageBytes - 1) / HugePageBytes * HugePageBytes;
+  if (aligned > start)
+  {
+    ::munmap(mapping, aligned - start);
+  }
+  if (start + mapped > aligned + rounded)
+  {
+    ::munmap(reinterpret_cast<void*>(aligned + rounded), start + mapped - (aligned + rounded));
+  }
+  // Advice only: without huge pages (disabled, or another kernel) the memory works the same.
+  ::madvise(reinterpret_cast<void*>(aligned), rounded, MADV_HUGEPAGE);
+  return reinterpret_cast<void*>(aligned);
 }
 
-HugePageBuffer::~HugePageBuffer()
+void FreeLarge(void* memory, std::size_t bytes) noexcept
 {
-  this->Release();
+  if (!memory)
+  {
+    return;
+  }
+  if (bytes < HugePageBytes)
+  {
+    ::operator delete(memory);
+    return;
+  }
+  ::munmap(memory, (bytes + HugePageBytes - 1) / HugePageBytes * HugePageBytes);
+}
+
+HugePageBuffer::HugePageBuffer(std::size_t bytes)
+  : Memory(bytes == 0 ? nullptr : AllocateLarge(bytes))
+  , Bytes(bytes)
+{
 }
 
 HugePageBuffer::HugePageBuffer(HugePageBuffer&& other) noexcept
+  : Memory(std::exchange(other.Memory, nullptr))
+  , Bytes(std::exchange(other.Bytes, 0))
 {
-  *this = std::move(other);
 }
 
 HugePageBuffer& HugePageBuffer::operator=(HugePageBuffer&& other) noexcept
 {
   if (this != &other)
   {
-    this->Release();
-    this->Mapping = std::exchange(other.Mapping, nullptr);
-    this->MappedBytes = std::exchange(other.MappedBytes, 0);
-    this->Aligned = std::exchange(other.Aligned, nullptr);
+    FreeLarge(this->Memory, this->Bytes);
+    this->Memory = std::exchange(other.Memory, nullptr);
     this->Bytes = std::exchange(other.Bytes, 0);
   }
   return *this;
-}
-
-void HugePageBuffer::Release()
-{
-  if (this->Mapping)
-  {
-    ::munmap(this->Mapping, this->MappedBytes);
-    this->Mapping = nullptr;
-  }
 }
 
 } // namespace atp

@@ -1,44 +1,79 @@
-// Large, long-lived working memory (the partitioner's bucket pool) backed by transparent huge
-// pages where the kernel allows it (its "madvise" mode, as on Debian). Filling memory 4 KiB
-// page by page costs a page fault each, and on virtual machines that shadow the page tables a
-// fault costs about 12 microseconds: 65,000 of them for a 256 MiB pool, most of a second on
-// the partitioning thread. A 2 MiB page takes one.
+// Large working memory backed by transparent huge pages where the kernel allows it (its
+// "madvise" mode, as on Debian): the partitioner's bucket pool, and the vectors it indexes at
+// random for every triangle (the forest's nodes, the bucket table). Filling memory 4 KiB page
+// by page costs a page fault each, about 12 microseconds on virtual machines that shadow the
+// page tables (65,000 of them for a 256 MiB pool), and random access over 4 KiB pages misses
+// the TLB; a 2 MiB page takes one fault and one TLB entry.
 #ifndef atpHugePageBuffer_h
 #define atpHugePageBuffer_h
 
 #include "vtkATPIOModule.h" // export macro
 
 #include <cstddef>
+#include <limits>
+#include <new>
 
 namespace atp
 {
 
+constexpr std::size_t HugePageBytes = std::size_t(2) << 20;
+
+/// Zero-filled memory for `bytes`: from operator new below a huge page, otherwise a mapping
+/// aligned to and advised for huge pages. Throws std::bad_alloc.
+VTKATPIO_EXPORT void* AllocateLarge(std::size_t bytes);
+/// Gives back what AllocateLarge(bytes) returned, with the same `bytes`.
+VTKATPIO_EXPORT void FreeLarge(void* memory, std::size_t bytes) noexcept;
+
+/// A fixed-size, zero-filled buffer from AllocateLarge; memory is taken as pages are first
+/// touched, so a large pool costs only what is used.
 class VTKATPIO_EXPORT HugePageBuffer
 {
 public:
   HugePageBuffer() = default;
-  /// Zero-filled; memory is taken as pages are first touched, as with any allocation.
-  /// Throws std::bad_alloc when the address space cannot be reserved.
   explicit HugePageBuffer(std::size_t bytes);
-  ~HugePageBuffer();
+  ~HugePageBuffer() { FreeLarge(this->Memory, this->Bytes); }
   HugePageBuffer(HugePageBuffer&& other) noexcept;
   HugePageBuffer& operator=(HugePageBuffer&& other) noexcept;
   HugePageBuffer(const HugePageBuffer&) = delete;
   HugePageBuffer& operator=(const HugePageBuffer&) = delete;
 
-  /// Aligned to a huge page (2 MiB).
-  void* Data() const { return this->Aligned; }
+  void* Data() const { return this->Memory; }
   std::size_t Size() const { return this->Bytes; }
 
-  static constexpr std::size_t HugePageBytes = std::size_t(2) << 20;
-
 private:
-  void Release();
-
-  void* Mapping = nullptr;
-  std::size_t MappedBytes = 0;
-  void* Aligned = nullptr;
+  void* Memory = nullptr;
   std::size_t Bytes = 0;
+};
+
+/// An allocator for std::vector that grows large and is indexed at random.
+template <typename T>
+struct HugePageAllocator
+{
+  using value_type = T;
+  HugePageAllocator() = default;
+  template <typename U>
+  HugePageAllocator(const HugePageAllocator<U>&) noexcept
+  {
+  }
+  T* allocate(std::size_t n)
+  {
+    if (n > std::numeric_limits<std::size_t>::max() / sizeof(T))
+    {
+      throw std::bad_alloc();
+    }
+    return static_cast<T*>(AllocateLarge(n * sizeof(T)));
+  }
+  void deallocate(T* memory, std::size_t n) noexcept { FreeLarge(memory, n * sizeof(T)); }
+  template <typename U>
+  bool operator==(const HugePageAllocator<U>&) const noexcept
+  {
+    return true;
+  }
+  template <typename U>
+  bool operator!=(const HugePageAllocator<U>&) const noexcept
+  {
+    return false;
+  }
 };
 
 } // namespace atp

@@ -11,6 +11,7 @@
 #include <new>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -18,11 +19,11 @@ using atp::HugePageBuffer;
 
 TEST(HugePageBuffer, ZeroFilledAlignedAndWritable)
 {
-  const std::size_t bytes = 5 * HugePageBuffer::HugePageBytes + 123;
+  const std::size_t bytes = 5 * atp::HugePageBytes + 123;
   HugePageBuffer buffer(bytes);
   ASSERT_NE(buffer.Data(), nullptr);
   EXPECT_EQ(buffer.Size(), bytes);
-  EXPECT_EQ(std::uintptr_t(buffer.Data()) % HugePageBuffer::HugePageBytes, 0u);
+  EXPECT_EQ(std::uintptr_t(buffer.Data()) % atp::HugePageBytes, 0u);
   auto* data = static_cast<std::uint8_t*>(buffer.Data());
   std::size_t nonzero = 0;
   for (std::size_t i = 0; i < bytes; ++i)
@@ -55,6 +56,25 @@ TEST(HugePageBuffer, EmptyAndMoved)
   second = HugePageBuffer(10);
   EXPECT_EQ(second.Size(), 10u);
   EXPECT_EQ(static_cast<char*>(second.Data())[9], 0);
+}
+
+TEST(HugePageAllocator, VectorsGrowAcrossTheHugePageSize)
+{
+  std::vector<std::uint64_t, atp::HugePageAllocator<std::uint64_t>> values;
+  const std::size_t count = 3 * atp::HugePageBytes / sizeof(std::uint64_t) + 5;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    values.push_back(i * i);
+  }
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    ASSERT_EQ(values[i], i * i);
+  }
+  EXPECT_EQ(std::uintptr_t(values.data()) % atp::HugePageBytes, 0u);
+  values.resize(10);
+  values.shrink_to_fit(); // back to a small block
+  EXPECT_EQ(values.back(), 81u);
+  EXPECT_THROW(values.reserve(values.max_size()), std::bad_alloc);
 }
 
 TEST(HugePageBuffer, RefusesWhatTheAddressSpaceCannotHold)
@@ -93,7 +113,7 @@ TEST(HugePageBuffer, AdvisedForHugePages)
   {
     GTEST_SKIP() << "transparent huge pages are off on this machine: " << modes;
   }
-  HugePageBuffer buffer(2 * HugePageBuffer::HugePageBytes);
+  HugePageBuffer buffer(2 * atp::HugePageBytes);
   static_cast<char*>(buffer.Data())[0] = 1;
   const int eligible = HugePageEligible(buffer.Data());
   if (eligible < 0)
