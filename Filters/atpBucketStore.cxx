@@ -1,6 +1,7 @@
 #include "atpBucketStore.h"
 
 #include <algorithm>
+#include <chrono>
 #include <iterator>
 #include <cstring>
 #include <stdexcept>
@@ -68,6 +69,28 @@ BucketStore::~BucketStore()
   {
     InFlight.Done.wait();
   }
+  if (Prefaulting.valid())
+  {
+    Prefaulting.wait();
+  }
+}
+
+void BucketStore::PrefaultMoreFrames()
+{
+  const std::size_t frames = FramePage.size();
+  if (PrefaultedFrames >= frames ||
+    (Prefaulting.valid() && Prefaulting.wait_for(std::chrono::seconds(0)) != std::future_status::ready))
+  {
+    return;
+  }
+  const std::size_t first = PrefaultedFrames;
+  const std::size_t count = std::min(PrefaultFrames, frames - first);
+  PrefaultedFrames += count;
+  Prefaulting = std::async(std::launch::async, [this, first, count] {
+    Pool.Prefault(first * PageBytes, count * PageBytes);
+    const std::size_t tableBytes = CornerTableSlots * sizeof(std::uint16_t);
+    CornerTableMemory.Prefault(first * tableBytes, count * tableBytes);
+  });
 }
 
 BucketStore::PageIndex BucketStore::NewPage()
@@ -173,6 +196,12 @@ std::size_t BucketStore::FreeFrame()
   }
   const std::size_t frame = FreeFrames.back();
   FreeFrames.pop_back();
+  // Unused frames are handed out in order: map the next ones on another thread before they
+  // are needed, so that this one does not stop to have huge pages zeroed.
+  if (frame + PrefaultFrames / 2 >= PrefaultedFrames)
+  {
+    PrefaultMoreFrames();
+  }
   return frame;
 }
 

@@ -122,6 +122,9 @@ private:
   void StartEvictions();
   /// Waits for the batch in flight, if any, and frees its frames.
   void FinishWrites();
+  /// Maps the next PrefaultFrames frames of the pool on a background thread, unless the last
+  /// ones are still being mapped.
+  void PrefaultMoreFrames();
   unsigned char* FrameData(std::size_t frame) const
   {
     return static_cast<unsigned char*>(Pool.Data()) + frame * PageBytes;
@@ -151,6 +154,10 @@ private:
   std::vector<char> PageOnDisk;
   std::vector<PageIndex> FreePages;
   WriteBatch InFlight;
+  /// 8 MiB of pool at a time; frames below PrefaultedFrames are mapped or being mapped.
+  static constexpr std::size_t PrefaultFrames = 512;
+  std::size_t PrefaultedFrames = 0;
+  std::future<void> Prefaulting;
   mutable BucketStoreStats Counters; // reads count too
 };
 

@@ -1,5 +1,6 @@
 #include "atpHugePageBuffer.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <sys/mman.h>
@@ -69,6 +70,24 @@ HugePageBuffer::HugePageBuffer(std::size_t bytes)
   : Memory(bytes == 0 ? nullptr : AllocateLarge(bytes))
   , Bytes(bytes)
 {
+}
+
+void HugePageBuffer::Prefault(std::size_t offset, std::size_t bytes) const
+{
+  if (offset >= this->Bytes || this->Bytes < HugePageBytes)
+  {
+    return; // nothing there, or ordinary heap memory
+  }
+  bytes = std::min(bytes, this->Bytes - offset);
+  // madvise wants a page-aligned start.
+  const std::uintptr_t begin = (std::uintptr_t(this->Memory) + offset) / 4096 * 4096;
+  const std::uintptr_t end = std::uintptr_t(this->Memory) + offset + bytes;
+#ifdef MADV_POPULATE_WRITE
+  ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);
+#else
+  (void)begin;
+  (void)end;
+#endif
 }
 
 HugePageBuffer::HugePageBuffer(HugePageBuffer&& other) noexcept

@@ -39,6 +39,10 @@ public:
 
   void* Data() const { return this->Memory; }
   std::size_t Size() const { return this->Bytes; }
+  /// Takes the page faults of [offset, offset + bytes) now, on the calling thread, so that a
+  /// busier thread writing there later finds the memory mapped. Thread-safe with writes to the
+  /// range. Does nothing where the kernel cannot (before Linux 5.14).
+  void Prefault(std::size_t offset, std::size_t bytes) const;
 
 private:
   void* Memory = nullptr;

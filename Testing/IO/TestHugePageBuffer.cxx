@@ -38,6 +38,29 @@ TEST(HugePageBuffer, ZeroFilledAlignedAndWritable)
   }
 }
 
+TEST(HugePageBuffer, PrefaultKeepsWhatIsWrittenAndStaysInRange)
+{
+  const std::size_t bytes = 3 * atp::HugePageBytes + 1000;
+  HugePageBuffer buffer(bytes);
+  auto* data = static_cast<std::uint8_t*>(buffer.Data());
+  data[atp::HugePageBytes + 17] = 5;
+  data[bytes - 1] = 6;
+  buffer.Prefault(atp::HugePageBytes, bytes); // past the end: clipped
+  buffer.Prefault(0, atp::HugePageBytes + 1);
+  buffer.Prefault(bytes, 100);               // nothing there
+  std::size_t nonzero = 0;
+  for (std::size_t i = 0; i < bytes; ++i)
+  {
+    nonzero += data[i] != 0;
+  }
+  EXPECT_EQ(nonzero, 2u);
+  EXPECT_EQ(data[atp::HugePageBytes + 17], 5);
+  EXPECT_EQ(data[bytes - 1], 6);
+  HugePageBuffer small(100);
+  small.Prefault(0, 100); // heap memory: a no-op
+  EXPECT_EQ(static_cast<std::uint8_t*>(small.Data())[99], 0);
+}
+
 TEST(HugePageBuffer, EmptyAndMoved)
 {
   HugePageBuffer empty;
