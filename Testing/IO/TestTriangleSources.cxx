@@ -924,6 +924,66 @@ TEST_F(TriangleSources, WithoutColorsCornersAreOpaqueWhite)
 // ---------------------------------------------------------------------------------------------
 // Degenerate triangles and boundary flags
 
+/// A line of /proc/self/status, in KiB.
+long StatusKiB(const std::string& key)
+{
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+  {
+    if (line.rfind(key + ":", 0) == 0)
+    {
+      return std::stol(line.substr(key.size() + 1));
+    }
+  }
+  return 0;
+}
+
+TEST_F(TriangleSources, OpeningLetsGoOfTheVertexPagesItHasRead)
+{
+  // Opening reads every vertex once (bounds, finiteness): with 144 MiB of positions and a
+  // single face, nearly all of its peak memory would be those pages if it kept them.
+  constexpr std::uint32_t vertices = 12u << 20;
+  constexpr std::uint32_t block = 1u << 16;
+  const std::string path = (this->Dir / "many-vertices.ply").string();
+  {
+    std::ofstream out(path, std::ios::binary);
+    out << "ply\nformat binary_little_endian 1.0\nelement vertex " << vertices
+        << "\nproperty float x\nproperty float y\nproperty float z\nelement face 1\n"
+           "property list uchar int vertex_indices\nend_header\n";
+    std::vector<float> positions(3 * block);
+    for (std::uint32_t first = 0; first < vertices; first += block)
+    {
+      for (std::uint32_t i = 0; i < block; ++i)
+      {
+        const std::uint32_t v = first + i;
+        positions[3 * i] = float(v);
+        positions[3 * i + 1] = float(v % 7);
+        positions[3 * i + 2] = float(v * v % 5);
+      }
+      out.write(reinterpret_cast<const char*>(positions.data()), std::streamsize(positions.size() * sizeof(float)));
+    }
+    const unsigned char count = 3;
+    const std::int32_t face[3] = { 0, 1, 2 };
+    out.write(reinterpret_cast<const char*>(&count), 1);
+    out.write(reinterpret_cast<const char*>(face), sizeof(face));
+    ASSERT_TRUE(out.good());
+  }
+  std::ofstream clear("/proc/self/clear_refs");
+  clear << "5"; // the peak resident memory starts again from the current one
+  clear.close();
+  if (!clear)
+  {
+    GTEST_SKIP() << "this kernel does not reset the peak resident memory (clear_refs)";
+  }
+  const long before = StatusKiB("VmHWM");
+  const auto source = atp::OpenTriangleSource(path, this->Scratch());
+  const long grown = StatusKiB("VmHWM") - before;
+  EXPECT_LT(grown, 96L << 10) << "KiB of peak resident memory added by opening";
+  EXPECT_EQ(source->Bounds().Max[0], double(vertices - 1));
+  EXPECT_EQ(source->ExpectedTriangles(), 1u);
+}
+
 TEST_F(TriangleSources, DegenerateTrianglesAreDroppedAndCounted)
 {
   Mesh mesh = Grid(2, 1, false);        // 4 triangles, 6 points
