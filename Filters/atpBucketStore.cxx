@@ -51,7 +51,6 @@ BucketStore::BucketStore(const std::string& scratchDirectory, std::size_t memory
   const std::size_t frames = std::max<std::size_t>(8, memoryBudgetBytes / frameBytes);
   Pool = HugePageBuffer(frames * PageBytes);
   CornerTableMemory = HugePageBuffer(frames * CornerTableSlots * sizeof(std::uint16_t));
-  CornerTables = static_cast<std::uint16_t*>(CornerTableMemory.Data());
   CornersIndexed.assign(frames, 0);
   States.assign(frames, FrameState::Free);
   FramePage.assign(frames, -1);
@@ -91,6 +90,11 @@ void BucketStore::PrefaultMoreFrames()
     const std::size_t tableBytes = CornerTableSlots * sizeof(std::uint16_t);
     CornerTableMemory.Prefault(first * tableBytes, count * tableBytes);
   });
+}
+
+std::uint16_t* BucketStore::CornerTable(std::size_t frame) const
+{
+  return static_cast<std::uint16_t*>(CornerTableMemory.Data()) + frame * CornerTableSlots;
 }
 
 BucketStore::PageIndex BucketStore::NewPage()
@@ -268,7 +272,7 @@ BucketStore::Corner BucketStore::CornerAt(const unsigned char* bytes) const
 
 void BucketStore::IndexCorners(std::size_t frame)
 {
-  std::uint16_t* table = &CornerTables[frame * CornerTableSlots];
+  std::uint16_t* table = CornerTable(frame);
   std::fill(table, table + CornerTableSlots, std::uint16_t(0));
   const unsigned char* page = FrameData(frame);
   const std::size_t corners = GetU16(page);
@@ -288,7 +292,7 @@ void BucketStore::IndexCorners(std::size_t frame)
 int BucketStore::CornerIndex(std::size_t frame, const Corner& corner)
 {
   unsigned char* page = FrameData(frame);
-  std::uint16_t* table = &CornerTables[frame * CornerTableSlots];
+  std::uint16_t* table = CornerTable(frame);
   std::size_t slot = HashCorner(corner.Low, corner.High) & (CornerTableSlots - 1);
   for (; table[slot] != 0; slot = (slot + 1) & (CornerTableSlots - 1))
   {

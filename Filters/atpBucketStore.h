@@ -129,6 +129,7 @@ private:
   {
     return static_cast<unsigned char*>(Pool.Data()) + frame * PageBytes;
   }
+  std::uint16_t* CornerTable(std::size_t frame) const;
 
   ScratchFile Disk;
   /// Indexed at random by every append: on huge pages.
@@ -140,7 +141,6 @@ private:
   /// Per frame, an open-addressing table from corner bytes to corner number + 1 (0: empty),
   /// for appending; valid only when CornersIndexed.
   HugePageBuffer CornerTableMemory;
-  std::uint16_t* CornerTables = nullptr;
   std::vector<char> CornersIndexed;
   // Per frame: its state, the page it holds (or none), whether it changed since loaded, and
   // the clock's reference bit.

@@ -25,9 +25,7 @@ void* AllocateLarge(std::size_t bytes)
 {
   if (bytes < HugePageBytes)
   {
-    void* memory = ::operator new(bytes == 0 ? 1 : bytes);
-    std::memset(memory, 0, bytes);
-    return memory;
+    return ::operator new(bytes == 0 ? 1 : bytes);
   }
   // A huge page more than needed, then the unaligned ends cut off.
   const std::size_t rounded = RoundedToHugePages(bytes);
@@ -70,6 +68,10 @@ HugePageBuffer::HugePageBuffer(std::size_t bytes)
   : Memory(bytes == 0 ? nullptr : AllocateLarge(bytes))
   , Bytes(bytes)
 {
+  if (bytes < HugePageBytes && this->Memory)
+  {
+    std::memset(this->Memory, 0, bytes); // a fresh mapping is zero already
+  }
 }
 
 void HugePageBuffer::Prefault(std::size_t offset, std::size_t bytes) const

@@ -18,7 +18,7 @@ namespace atp
 
 constexpr std::size_t HugePageBytes = std::size_t(2) << 20;
 
-/// Zero-filled memory for `bytes`: from operator new below a huge page, otherwise a mapping
+/// Memory for `bytes`: from operator new below a huge page, otherwise a fresh (zero) mapping
 /// aligned to and advised for huge pages. Throws std::bad_alloc.
 VTKATPIO_EXPORT void* AllocateLarge(std::size_t bytes);
 /// Gives back what AllocateLarge(bytes) returned, with the same `bytes`.

@@ -49,6 +49,9 @@ std::array<double, 3> AreaNormal(const float v[3][3])
 }
 
 /// Kept triangles of the first pass and their area normals, as added to the normal sums.
+/// Vertices scanned, or triangles visited, between releases of resident pages.
+constexpr std::uint64_t ReleaseInterval = std::uint64_t(1) << 22;
+
 struct FirstPassBatch
 {
   static constexpr std::size_t Capacity = 1 << 16;
@@ -76,7 +79,6 @@ void MeshTriangleSource::CheckVerticesAndBound()
   this->Statistics.HasColors = this->Vertices.HasColors();
   // The scan reads the whole vertex array once: it lets go of what it has read as it goes, or
   // all of it would stay resident (648 MiB for the 108M-triangle torus, the build's peak).
-  constexpr std::uint64_t ReleaseInterval = std::uint64_t(1) << 22;
   for (std::uint64_t i = 0; i < this->Vertices.Count; ++i)
   {
     if (this->Vertices.FileBacked && i % ReleaseInterval == 0 && i > 0)
@@ -180,7 +182,6 @@ void MeshTriangleSource::FirstPass()
 
 void MeshTriangleSource::BoundResidentMemory()
 {
-  constexpr std::uint64_t ReleaseInterval = std::uint64_t(1) << 22;
   if (++this->VisitedSinceRelease < ReleaseInterval)
   {
     return;
