@@ -4,15 +4,22 @@
 #include <cstdint>
 #include <cstring>
 #include <sys/mman.h>
+#include <unistd.h>
 #include <utility>
 
 namespace atp
 {
 namespace
 {
+std::uintptr_t RoundUp(std::uintptr_t value, std::uintptr_t step)
+{
+  return (value + step - 1) / step * step;
+}
+
+/// The mapping of a large block: whole huge pages.
 std::size_t RoundedToHugePages(std::size_t bytes)
 {
-  const std::size_t rounded = (bytes + HugePageBytes - 1) / HugePageBytes * HugePageBytes;
+  const std::size_t rounded = RoundUp(bytes, HugePageBytes);
   if (rounded < bytes || rounded + HugePageBytes < rounded)
   {
     throw std::bad_alloc();
@@ -36,7 +43,7 @@ void* AllocateLarge(std::size_t bytes)
     throw std::bad_alloc();
   }
   const std::uintptr_t start = std::uintptr_t(mapping);
-  const std::uintptr_t aligned = (start + HugePageBytes - 1) / HugePageBytes * HugePageBytes;
+  const std::uintptr_t aligned = RoundUp(start, HugePageBytes);
   if (aligned > start)
   {
     ::munmap(mapping, aligned - start);
@@ -61,7 +68,7 @@ void FreeLarge(void* memory, std::size_t bytes) noexcept
     ::operator delete(memory);
     return;
   }
-  ::munmap(memory, (bytes + HugePageBytes - 1) / HugePageBytes * HugePageBytes);
+  ::munmap(memory, RoundedToHugePages(bytes)); // cannot throw: AllocateLarge rounded it
 }
 
 HugePageBuffer::HugePageBuffer(std::size_t bytes)
@@ -82,7 +89,8 @@ void HugePageBuffer::Prefault(std::size_t offset, std::size_t bytes) const
   }
   bytes = std::min(bytes, this->Bytes - offset);
   // madvise wants a page-aligned start.
-  const std::uintptr_t begin = (std::uintptr_t(this->Memory) + offset) / 4096 * 4096;
+  static const std::uintptr_t page = std::uintptr_t(::sysconf(_SC_PAGESIZE));
+  const std::uintptr_t begin = (std::uintptr_t(this->Memory) + offset) / page * page;
   const std::uintptr_t end = std::uintptr_t(this->Memory) + offset + bytes;
 #ifdef MADV_POPULATE_WRITE
   ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);

@@ -48,10 +48,10 @@ std::array<double, 3> AreaNormal(const float v[3][3])
   return { { e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0] } };
 }
 
-/// Kept triangles of the first pass and their area normals, as added to the normal sums.
 /// Vertices scanned, or triangles visited, between releases of resident pages.
 constexpr std::uint64_t ReleaseInterval = std::uint64_t(1) << 22;
 
+/// Kept triangles of the first pass and their area normals, as added to the normal sums.
 struct FirstPassBatch
 {
   static constexpr std::size_t Capacity = 1 << 16;
