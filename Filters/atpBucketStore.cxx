@@ -45,6 +45,7 @@ std::size_t HashCorner(std::uint64_t low, std::uint64_t high)
 BucketStore::BucketStore(const std::string& scratchDirectory, std::size_t memoryBudgetBytes, bool colors)
   : Disk(scratchDirectory)
   , CornerBytes(PositionNormalBytes + (colors ? 4 : 0))
+  , LastTriangles(LastTriangleSlots)
 {
   // At least a handful of frames so that a split (one bucket read, two appended) always fits.
   const std::size_t frameBytes = PageBytes + CornerTableSlots * sizeof(std::uint16_t);
@@ -107,6 +108,7 @@ BucketStore::PageIndex BucketStore::NewPage()
   }
   PageFrame.push_back(NotResident);
   PageOnDisk.push_back(0);
+  NextPage.push_back(NoPage);
   return PageIndex(PageFrame.size() - 1);
 }
 
@@ -317,7 +319,7 @@ int BucketStore::CornerIndex(std::size_t frame, const Corner& corner)
   return int(corners);
 }
 
-bool BucketStore::AddToPage(std::size_t frame, const SoupTriangle& triangle, Bucket& bucket)
+bool BucketStore::AddToPage(std::size_t frame, const SoupTriangle& triangle, BucketIndex bucket)
 {
   if (!CornersIndexed[frame])
   {
@@ -332,15 +334,17 @@ bool BucketStore::AddToPage(std::size_t frame, const SoupTriangle& triangle, Buc
   }
   // The record's room is reserved by the checks: each number goes in as it is found.
   unsigned char* record = page + PageBytes - (std::size_t(triangles) + 1) * TriangleBytes;
+  LastTriangle& last = LastOf(bucket);
+  const bool haveLast = last.Bucket == bucket;
   Corner corners[3];
   std::uint16_t numbers[3];
   for (int k = 0; k < 3; ++k)
   {
     corners[k] = CornerOf(triangle, k);
     int number = -1;
-    for (int j = 0; j < 3 && bucket.HasLast && number < 0; ++j)
+    for (int j = 0; j < 3 && haveLast && number < 0; ++j)
     {
-      number = bucket.LastCorners[j] == corners[k] ? int(bucket.LastNumbers[j]) : -1;
+      number = last.Corners[j] == corners[k] ? int(last.Numbers[j]) : -1;
     }
     number = number >= 0 ? number : CornerIndex(frame, corners[k]);
     if (number < 0)
@@ -355,9 +359,9 @@ bool BucketStore::AddToPage(std::size_t frame, const SoupTriangle& triangle, Buc
   }
   record[6] = triangle.BoundaryEdges;
   PutU16(page + 2, std::uint16_t(triangles + 1));
-  std::copy(std::begin(corners), std::end(corners), bucket.LastCorners);
-  std::copy(std::begin(numbers), std::end(numbers), bucket.LastNumbers);
-  bucket.HasLast = true;
+  last.Bucket = bucket;
+  std::copy(std::begin(corners), std::end(corners), last.Corners);
+  std::copy(std::begin(numbers), std::end(numbers), last.Numbers);
   return true;
 }
 
@@ -368,14 +372,16 @@ void BucketStore::Append(BucketIndex bucketIndex, const SoupTriangle& triangle)
     Buckets.resize(std::size_t(bucketIndex) + 1);
   }
   Bucket& bucket = Buckets[bucketIndex];
-  std::size_t frame = bucket.Pages.empty() ? 0 : Resident(bucket.Pages.back(), true);
-  if (bucket.Pages.empty() || !AddToPage(frame, triangle, bucket))
+  const PageIndex lastPage = bucket.LastPage;
+  std::size_t frame = lastPage == NoPage ? 0 : Resident(lastPage, true);
+  if (lastPage == NoPage || !AddToPage(frame, triangle, bucketIndex))
   {
     const PageIndex page = NewPage();
-    bucket.Pages.push_back(page);
-    bucket.HasLast = false; // its numbers were the old page's
+    (lastPage == NoPage ? bucket.FirstPage : NextPage[lastPage]) = page;
+    bucket.LastPage = page;
+    ForgetLast(bucketIndex); // its numbers were the old page's
     frame = Resident(page, false);
-    AddToPage(frame, triangle, bucket); // an empty page holds any triangle
+    AddToPage(frame, triangle, bucketIndex); // an empty page holds any triangle
   }
   FrameDirty[frame] = 1;
   FrameReferenced[frame] = 1;
@@ -391,7 +397,7 @@ void BucketStore::Read(BucketIndex bucketIndex, std::vector<SoupTriangle>& out) 
   const Bucket& bucket = Buckets[bucketIndex];
   out.reserve(out.size() + bucket.Count);
   std::vector<unsigned char> buffer;
-  for (const PageIndex page : bucket.Pages)
+  for (PageIndex page = bucket.FirstPage; page != NoPage; page = NextPage[page])
   {
     if (PageFrame[page] != NotResident)
     {
@@ -445,8 +451,10 @@ void BucketStore::Clear(BucketIndex bucketIndex)
     return;
   }
   Bucket& bucket = Buckets[bucketIndex];
-  for (const PageIndex page : bucket.Pages)
+  for (PageIndex page = bucket.FirstPage, next; page != NoPage; page = next)
   {
+    next = NextPage[page];
+    NextPage[page] = NoPage;
     if (PageFrame[page] != NotResident)
     {
       const std::size_t frame = std::size_t(PageFrame[page]);
@@ -469,7 +477,7 @@ void BucketStore::Clear(BucketIndex bucketIndex)
     PageOnDisk[page] = 0;
     FreePages.push_back(page);
   }
-  bucket = Bucket();
+  bucket = Bucket(); // its next append starts a page, which forgets its last triangle
 }
 
 } // namespace atp

@@ -77,17 +77,32 @@ private:
       return Low == o.Low && High == o.High && Color == o.Color;
     }
   };
+  static constexpr PageIndex NoPage = ~PageIndex(0);
+  /// 16 bytes: there is one per node of the forest. Its pages form a list (NextPage).
   struct Bucket
   {
-    std::vector<PageIndex> Pages;
     std::uint64_t Count = 0;
-    /// The corners of the last triangle appended and their numbers in the last page (none
-    /// after a new page starts): the next triangle, a stream neighbour, mostly shares them,
-    /// and finding them here touches no page memory.
-    Corner LastCorners[3];
-    std::uint16_t LastNumbers[3] = { 0, 0, 0 };
-    bool HasLast = false;
+    PageIndex FirstPage = NoPage, LastPage = NoPage;
   };
+  /// The corners of the last triangle appended to a bucket and their numbers in its last page:
+  /// the next triangle, a stream neighbour, mostly shares them, and finding them here touches
+  /// no page memory. Kept for the recently appended buckets only (a few are active at a time),
+  /// in a table of fixed size rather than in every bucket.
+  struct LastTriangle
+  {
+    BucketIndex Bucket = ~BucketIndex(0); ///< none
+    std::uint16_t Numbers[3] = { 0, 0, 0 };
+    Corner Corners[3];
+  };
+  static constexpr std::size_t LastTriangleSlots = 8192;
+  LastTriangle& LastOf(BucketIndex bucket) { return LastTriangles[bucket & (LastTriangleSlots - 1)]; }
+  /// Forgets the bucket's last triangle: its last page starts anew.
+  void ForgetLast(BucketIndex bucket)
+  {
+    LastTriangle& last = LastOf(bucket);
+    last.Bucket = last.Bucket == bucket ? ~BucketIndex(0) : last.Bucket;
+  }
+
   enum class FrameState : char
   {
     Free,
@@ -106,7 +121,7 @@ private:
   std::size_t Resident(PageIndex page, bool load);
   std::size_t FreeFrame();
   /// Adds the triangle to the page in `frame` if its new corners fit; false when full.
-  bool AddToPage(std::size_t frame, const SoupTriangle& triangle, Bucket& bucket);
+  bool AddToPage(std::size_t frame, const SoupTriangle& triangle, BucketIndex bucket);
   /// Corner k of the triangle as words.
   Corner CornerOf(const SoupTriangle& triangle, int k) const;
   /// The corner stored at `bytes` in a page.
@@ -134,6 +149,7 @@ private:
   ScratchFile Disk;
   /// Indexed at random by every append: on huge pages.
   std::vector<Bucket, HugePageAllocator<Bucket>> Buckets;
+  std::vector<LastTriangle> LastTriangles;
   /// Bytes of one corner: position, normal, and color when kept.
   const std::size_t CornerBytes;
   // Pages of the pool cost memory only once they are used; huge pages make filling it cheap.
@@ -149,8 +165,10 @@ private:
   std::vector<char> FrameDirty, FrameReferenced;
   std::vector<std::size_t> FreeFrames;
   std::size_t ClockHand = 0;
-  // Per page: its frame, or NotResident (then its content, if any, is on disk at its slot).
+  // Per page: its frame, or NotResident (then its content, if any, is on disk at its slot);
+  // the next page of its bucket.
   std::vector<std::int32_t> PageFrame;
+  std::vector<PageIndex> NextPage;
   std::vector<char> PageOnDisk;
   std::vector<PageIndex> FreePages;
   WriteBatch InFlight;

@@ -160,7 +160,7 @@ private:
     std::map<std::uint64_t, std::vector<NodeIndex>> groups;
     for (NodeIndex n : nodes)
     {
-      groups[DiamondOf(Forest[n].Geometry).Bits].push_back(n);
+      groups[DiamondOf(Forest.Geometry(n)).Bits].push_back(n);
     }
     std::vector<std::vector<NodeIndex>> ordered;
     for (auto& [id, members] : groups)
@@ -189,8 +189,8 @@ private:
   {
     for (NodeIndex m : members)
     {
-      job.Members.push_back(Forest[m].Geometry);
-      for (NodeIndex c : Forest[m].Children)
+      job.Members.push_back(Forest.Geometry(m));
+      for (NodeIndex c : Forest[m].Children())
       {
         job.Children.emplace_back();
         Intermediate.Get(Results[std::size_t(c)].Intermediate, job.Children.back());
@@ -212,7 +212,7 @@ private:
       Store(m, made.Patches[i], haveParents);
       spheres.push_back(LoadSphere(Results[std::size_t(m)].Sphere));
       std::vector<NormalCone> cones{ made.Patches[i].Cone };
-      for (NodeIndex c : Forest[m].Children)
+      for (NodeIndex c : Forest[m].Children())
       {
         NodeResult& child = Results[std::size_t(c)];
         childSaturatedError = std::max(childSaturatedError, child.SaturatedError);
@@ -244,7 +244,7 @@ private:
     std::vector<std::pair<std::pair<int, std::uint64_t>, std::uint64_t>> keys(Forest.Size());
     for (NodeIndex n = 0; n < NodeIndex(Forest.Size()); ++n)
     {
-      keys[std::size_t(n)] = { { Forest[n].Id.Level(), CentroidMorton(Forest[n].Geometry) },
+      keys[std::size_t(n)] = { { Forest[n].Id.Level(), CentroidMorton(Forest.Geometry(n)) },
         Forest[n].Id.Bits };
     }
     std::vector<NodeIndex> order(Forest.Size());
@@ -289,7 +289,7 @@ private:
       node.Parent = tet.Parent == TetraForest::None ? -1 : fileIndex[std::size_t(tet.Parent)];
       for (int c = 0; c < 2; ++c)
       {
-        node.Children[c] = tet.IsLeaf() ? -1 : fileIndex[std::size_t(tet.Children[c])];
+        node.Children[c] = tet.IsLeaf() ? -1 : fileIndex[std::size_t(tet.Child(c))];
       }
       std::copy(r.Sphere, r.Sphere + 4, node.Sphere);
       StoreCone(r.Cone, node.ConeAxis, node.ConeCos);

@@ -42,7 +42,7 @@ void Partitioner::Redistribute(TetraForest::NodeIndex splitNode)
   {
     double p[3];
     Centroid(t, p);
-    Buckets.Append(std::uint32_t(node.Children[node.Plane.ChildContaining(p)]), t);
+    Buckets.Append(std::uint32_t(node.Child(node.Plane.ChildContaining(p))), t);
   }
 }
 

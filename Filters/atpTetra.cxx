@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace atp
@@ -98,38 +99,46 @@ LatticePoint Tetra::SplitPoint() const
   return Midpoint(V[0], V[1]);
 }
 
-std::array<Tetra, 2> Tetra::Children() const
+Tetra Tetra::Child(int which) const
 {
-  const LatticePoint m = SplitPoint();
-  return { MakeCanonical({ V[0], m, V[2], V[3] }), MakeCanonical({ V[1], m, V[2], V[3] }) };
+  return MakeCanonical({ V[std::size_t(which & 1)], SplitPoint(), V[2], V[3] });
 }
 
 SplitPlane Tetra::Plane() const
 {
   // Normal = (V2 - m) x (V3 - m): integer differences below 2^21, so every product is exact.
   const LatticePoint m = SplitPoint();
-  double u[3], v[3];
-  SplitPlane plane;
+  std::int64_t u[3], v[3];
   for (int k = 0; k < 3; ++k)
   {
-    u[k] = double(V[2][k]) - m[k];
-    v[k] = double(V[3][k]) - m[k];
-    plane.Point[k] = m[k];
+    u[k] = std::int64_t(V[2][k]) - m[k];
+    v[k] = std::int64_t(V[3][k]) - m[k];
   }
-  plane.Normal[0] = u[1] * v[2] - u[2] * v[1];
-  plane.Normal[1] = u[2] * v[0] - u[0] * v[2];
-  plane.Normal[2] = u[0] * v[1] - u[1] * v[0];
-  double side = 0;
+  std::int64_t n[3] = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+    u[0] * v[1] - u[1] * v[0] };
+  // Its nonzero components share one magnitude (the plane is x_i = c or x_i +- x_j = c).
+  const std::int64_t magnitude = std::max({ std::abs(n[0]), std::abs(n[1]), std::abs(n[2]) });
+  if (magnitude == 0)
+  {
+    throw std::logic_error("atp::Tetra::Plane: the deepest level has no split plane");
+  }
+  std::int64_t side = 0;
   for (int k = 0; k < 3; ++k)
   {
-    side += plane.Normal[k] * (double(V[0][k]) - m[k]);
-  }
-  if (side < 0)
-  {
-    for (double& n : plane.Normal)
+    if (n[k] != 0 && std::abs(n[k]) != magnitude)
     {
-      n = -n;
+      throw std::logic_error("atp::Tetra::Plane: a split plane outside the Kuhn family");
     }
+    n[k] /= magnitude;
+    side += n[k] * (std::int64_t(V[0][k]) - m[k]);
+  }
+  const std::int64_t orientation = side < 0 ? -1 : 1;
+  SplitPlane plane;
+  plane.Offset = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    plane.Normal[k] = std::int8_t(orientation * n[k]);
+    plane.Offset += plane.Normal[k] * m[k];
   }
   return plane;
 }
@@ -184,7 +193,7 @@ Tetra TetraOf(TetId id)
   Tetra t = RootTetra(id.RootIndex());
   for (int bit = id.Level() - 1; bit >= 0; --bit)
   {
-    t = t.Children()[(id.Bits >> bit) & 1u];
+    t = t.Child(int((id.Bits >> bit) & 1u));
   }
   return t;
 }
@@ -210,7 +219,7 @@ TetId Locate(const double p[3], int level)
   for (int l = 0; l < level; ++l)
   {
     const int c = t.ChildContaining(p);
-    t = t.Children()[c];
+    t = t.Child(c);
     id = id.Child(c);
   }
   return id;

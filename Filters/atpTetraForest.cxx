@@ -6,6 +6,7 @@
 
 namespace atp
 {
+static_assert(sizeof(TetraForest::Node) == 24, "a forest node stays small: they are millions");
 
 TetraForest::TetraForest()
 {
@@ -19,8 +20,7 @@ TetraForest::NodeIndex TetraForest::AddNode(TetId id, const Tetra& geometry, Nod
 {
   Node node;
   node.Id = id;
-  node.Geometry = geometry;
-  node.Plane = geometry.Plane();
+  node.Plane = id.Level() < MaxLevel ? geometry.Plane() : SplitPlane{}; // the deepest never split
   node.Parent = parent;
   Nodes.push_back(node);
   DeepestLevel = std::max(DeepestLevel, id.Level());
@@ -36,7 +36,7 @@ TetraForest::NodeIndex TetraForest::Find(TetId id) const
     {
       return None;
     }
-    n = Nodes[std::size_t(n)].Children[(id.Bits >> bit) & 1u];
+    n = Nodes[std::size_t(n)].Child(int((id.Bits >> bit) & 1u));
   }
   return n;
 }
@@ -50,7 +50,7 @@ TetraForest::NodeIndex TetraForest::Materialize(
     int bit = id.Level() - 1;
     for (; bit >= 0 && !Nodes[std::size_t(n)].IsLeaf(); --bit)
     {
-      n = Nodes[std::size_t(n)].Children[(id.Bits >> bit) & 1u];
+      n = Nodes[std::size_t(n)].Child(int((id.Bits >> bit) & 1u));
     }
     if (bit < 0)
     {
@@ -85,10 +85,10 @@ bool TetraForest::SplitDiamond(NodeIndex node, const std::function<void(NodeInde
       throw std::logic_error("atp::TetraForest: diamond found half split");
     }
     const TetId memberId = Nodes[std::size_t(m)].Id;
-    const auto children = Nodes[std::size_t(m)].Geometry.Children();
-    const NodeIndex first = AddNode(memberId.Child(0), children[0], m);
-    const NodeIndex second = AddNode(memberId.Child(1), children[1], m);
-    Nodes[std::size_t(m)].Children = { { first, second } };
+    const Tetra geometry = TetraOf(memberId);
+    const NodeIndex first = AddNode(memberId.Child(0), geometry.Child(0), m);
+    AddNode(memberId.Child(1), geometry.Child(1), m);
+    Nodes[std::size_t(m)].FirstChild = first;
     onSplit(m);
   }
   return true;
@@ -96,7 +96,15 @@ bool TetraForest::SplitDiamond(NodeIndex node, const std::function<void(NodeInde
 
 void TetraForest::LeafHint::Set(const TetraForest& forest, NodeIndex leaf)
 {
-  const Tetra& t = forest[leaf].Geometry;
+  this->Leaf = leaf;
+  this->Current = std::size_t(leaf) % RecentSlots;
+  FacePlanes& faces = this->Recent[this->Current];
+  if (faces.Node == leaf)
+  {
+    return; // a node's geometry never changes
+  }
+  faces.Node = leaf;
+  const Tetra t = forest.Geometry(leaf);
   for (int f = 0; f < 4; ++f)
   {
     // Lattice coordinates below 2^20: the edge vectors and their cross product are exact.
@@ -112,14 +120,13 @@ void TetraForest::LeafHint::Set(const TetraForest& forest, NodeIndex leaf)
       e1[0] * e2[1] - e1[1] * e2[0] };
     const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     const double toward = n[0] * inside[0] + n[1] * inside[1] + n[2] * inside[2] > 0 ? 1 : -1;
-    double* plane = this->Planes[f];
+    double* plane = faces.Planes[f];
     for (int i = 0; i < 3; ++i)
     {
       plane[i] = toward * n[i] / length;
     }
     plane[3] = -(plane[0] * a[0] + plane[1] * a[1] + plane[2] * a[2]);
   }
-  this->Leaf = leaf;
 }
 
 void TetraForest::LeavesContaining(
@@ -143,7 +150,7 @@ void TetraForest::LeavesContaining(
         const Node& node = Nodes[std::size_t(n[l])];
         if (!node.IsLeaf())
         {
-          n[l] = node.Children[node.Plane.ChildContaining(points[pending[l]])];
+          n[l] = node.Child(node.Plane.ChildContaining(points[pending[l]]));
           descending = true;
         }
       }

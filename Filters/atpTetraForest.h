@@ -21,15 +21,19 @@ public:
   using NodeIndex = std::int32_t;
   static constexpr NodeIndex None = -1;
 
+  /// 24 bytes: a forest of a billion triangles has millions of nodes. The geometry is not
+  /// kept: Geometry() recomputes it from the id where it is needed, which is rarely.
   struct Node
   {
     TetId Id;
-    Tetra Geometry;
     SplitPlane Plane;
     NodeIndex Parent = None;
-    std::array<NodeIndex, 2> Children{ { None, None } };
+    /// The children are made together, so the second is always the one after the first.
+    NodeIndex FirstChild = None;
 
-    bool IsLeaf() const { return Children[0] == None; }
+    bool IsLeaf() const { return FirstChild == None; }
+    NodeIndex Child(int which) const { return FirstChild + which; }
+    std::array<NodeIndex, 2> Children() const { return { { FirstChild, FirstChild + 1 } }; }
   };
 
   /// The six roots, as nodes 0 to 5.
@@ -37,6 +41,8 @@ public:
 
   std::size_t Size() const { return Nodes.size(); }
   const Node& operator[](NodeIndex i) const { return Nodes[std::size_t(i)]; }
+  /// The node's tetrahedron, in O(level).
+  Tetra Geometry(NodeIndex i) const { return TetraOf(Nodes[std::size_t(i)].Id); }
 
   /// The node of a tetrahedron, or None when it does not exist (an ancestor is a leaf).
   NodeIndex Find(TetId id) const;
@@ -47,7 +53,7 @@ public:
     while (!Nodes[std::size_t(n)].IsLeaf())
     {
       const Node& node = Nodes[std::size_t(n)];
-      n = node.Children[node.Plane.ChildContaining(p)];
+      n = node.Child(node.Plane.ChildContaining(p));
     }
     return n;
   }
@@ -55,6 +61,7 @@ public:
 
   /// The last leaf found and its face planes: a point of a streamed mesh is mostly in the
   /// leaf of the point before it, and telling that takes four plane tests, not a descent.
+  /// A hint serves one forest.
   class LeafHint
   {
   public:
@@ -67,7 +74,7 @@ public:
       {
         return false;
       }
-      for (const auto& plane : this->Planes)
+      for (const auto& plane : this->Recent[this->Current].Planes)
       {
         if (plane[0] * p[0] + plane[1] * p[1] + plane[2] * p[2] + plane[3] <= Margin)
         {
@@ -82,8 +89,18 @@ public:
   private:
     /// In lattice units (the lattice spans 2^20): plane tests round by about 2^-31.
     static constexpr double Margin = 1e-6;
-    /// Unit normals pointing inside, and offsets: distance from each face.
-    double Planes[4][4] = {};
+    /// A node's face planes: unit normals pointing inside, and offsets (distance from each
+    /// face). Nodes keep no geometry, and a stream goes back and forth between a few leaves
+    /// (a row of a scan crosses the leaves the row before crossed): the planes of recent
+    /// leaves are kept, by node.
+    struct FacePlanes
+    {
+      NodeIndex Node = None;
+      double Planes[4][4] = {};
+    };
+    static constexpr std::size_t RecentSlots = 64;
+    std::array<FacePlanes, RecentSlots> Recent;
+    std::size_t Current = 0;
   };
 
   /// LeafContaining for many points at once: points that `hint` holds need no descent, the

@@ -20,7 +20,7 @@ std::vector<Tetra> LeafGeometry(const TetraForest& forest)
   std::vector<Tetra> tets;
   for (const auto leaf : forest.Leaves())
   {
-    tets.push_back(forest[leaf].Geometry);
+    tets.push_back(forest.Geometry(leaf));
   }
   return tets;
 }
@@ -111,7 +111,7 @@ TEST(Forest, FindAndLocateAgree)
     const double p[3] = { coordinate(rng), coordinate(rng), coordinate(rng) };
     const auto leaf = forest.LeafContaining(p);
     ASSERT_TRUE(forest[leaf].IsLeaf());
-    EXPECT_TRUE(forest[leaf].Geometry.Contains(p));
+    EXPECT_TRUE(forest.Geometry(leaf).Contains(p));
     EXPECT_EQ(forest.Find(forest[leaf].Id), leaf);
     EXPECT_EQ(Locate(p, forest[leaf].Id.Level()), forest[leaf].Id);
   }
@@ -136,7 +136,7 @@ TEST(Forest, FindAndLocateAgree)
   }
   for (const auto leaf : forest.Leaves())
   {
-    const Tetra& t = forest[leaf].Geometry;
+    const Tetra t = forest.Geometry(leaf);
     for (int v = 0; v < 4; ++v)
     {
       const std::array<double, 3> corner = { double(t.V[std::size_t(v)][0]), double(t.V[std::size_t(v)][1]), double(t.V[std::size_t(v)][2]) };
@@ -149,7 +149,7 @@ TEST(Forest, FindAndLocateAgree)
           face[std::size_t(a)] += t.V[std::size_t(w)][std::size_t(a)] / 3.0;
         }
       }
-      points.push_back(forest[leaf].Geometry.Centroid());
+      points.push_back(forest.Geometry(leaf).Centroid());
       points.push_back(face);
     }
   }
@@ -168,11 +168,11 @@ TEST(TetraForest, LeafHintHoldsOnlyPointsWellInsideALeafThatIsStillALeaf)
   TetraForest forest;
   const TetraForest::NodeIndex root = 2;
   TetraForest::LeafHint hint;
-  const std::array<double, 3> centroid = forest[root].Geometry.Centroid();
+  const std::array<double, 3> centroid = forest.Geometry(root).Centroid();
   EXPECT_FALSE(hint.Holds(forest, centroid.data())) << "no leaf yet";
   hint.Set(forest, root);
   EXPECT_TRUE(hint.Holds(forest, centroid.data()));
-  const Tetra& t = forest[root].Geometry;
+  const Tetra t = forest.Geometry(root);
   for (int v = 0; v < 4; ++v)
   {
     const std::array<double, 3> corner = { double(t.V[std::size_t(v)][0]), double(t.V[std::size_t(v)][1]), double(t.V[std::size_t(v)][2]) };
@@ -191,7 +191,7 @@ TEST(TetraForest, LeafHintHoldsOnlyPointsWellInsideALeafThatIsStillALeaf)
       half[std::size_t(a)] = 0.5 * (centroid[std::size_t(a)] + corner[std::size_t(a)]);
       nearCorner[std::size_t(a)] = corner[std::size_t(a)] + 1e-7 / length * (centroid[std::size_t(a)] - corner[std::size_t(a)]);
     }
-    ASSERT_TRUE(forest[root].Geometry.Contains(nearCorner.data()));
+    ASSERT_TRUE(forest.Geometry(root).Contains(nearCorner.data()));
     EXPECT_TRUE(hint.Holds(forest, half.data()));
     EXPECT_FALSE(hint.Holds(forest, nearCorner.data()));
   }
@@ -199,6 +199,39 @@ TEST(TetraForest, LeafHintHoldsOnlyPointsWellInsideALeafThatIsStillALeaf)
   EXPECT_FALSE(hint.Holds(forest, outside.data()));
   forest.SplitDiamond(root, [](TetraForest::NodeIndex) {});
   EXPECT_FALSE(hint.Holds(forest, centroid.data())) << "the leaf was split";
+}
+
+// The hint keeps the face planes of recent leaves by node number: leaves whose numbers agree in
+// their low bits, set in turn, must each be held by their own planes.
+TEST(TetraForest, LeafHintTellsApartLeavesItRemembersInOneSlot)
+{
+  const TetraForest forest = RandomRefinement(4, 600);
+  const std::vector<TetraForest::NodeIndex> leaves = forest.Leaves();
+  constexpr TetraForest::NodeIndex Apart = 1024; // a multiple of any slot count up to it
+  TetraForest::NodeIndex a = TetraForest::None, b = TetraForest::None;
+  for (std::size_t i = 0; i < leaves.size() && b == TetraForest::None; ++i)
+  {
+    for (std::size_t j = i + 1; j < leaves.size() && b == TetraForest::None; ++j)
+    {
+      if ((leaves[j] - leaves[i]) % Apart == 0)
+      {
+        a = leaves[i];
+        b = leaves[j];
+      }
+    }
+  }
+  ASSERT_NE(b, TetraForest::None) << "the forest is too small for the test";
+  const std::array<double, 3> inA = forest.Geometry(a).Centroid(), inB = forest.Geometry(b).Centroid();
+  TetraForest::LeafHint hint;
+  for (int round = 0; round < 2; ++round)
+  {
+    hint.Set(forest, a);
+    EXPECT_TRUE(hint.Holds(forest, inA.data()));
+    EXPECT_FALSE(hint.Holds(forest, inB.data()));
+    hint.Set(forest, b);
+    EXPECT_TRUE(hint.Holds(forest, inB.data()));
+    EXPECT_FALSE(hint.Holds(forest, inA.data()));
+  }
 }
 
 // The checks must be able to fail: break a diamond on purpose.
@@ -209,7 +242,7 @@ TEST(ConformityCheck, RejectsOneMemberOfADiamondSplitAlone)
   bool broken = false;
   for (const auto leaf : forest.Leaves())
   {
-    const Tetra& t = forest[leaf].Geometry;
+    const Tetra t = forest.Geometry(leaf);
     if (!broken && DiamondMembers(forest[leaf].Id).size() > 1)
     {
       const auto children = t.Children();

@@ -131,6 +131,59 @@ TEST(BucketStore, WithoutColorsTrianglesReadBackWhite)
   CheckEvictionAndReuse(false);
 }
 
+// Stream neighbours share corners, which a bucket finds again without a page lookup. Buckets
+// whose numbers agree in their low bits, appended in turn, and a bucket emptied and filled
+// again (its recycled page starts without corners) must not take each other's corner numbers.
+TEST(BucketStore, BucketsAppendedInTurnKeepTheirOwnSharedCorners)
+{
+  BucketStore store("", 1, true);
+  const std::uint32_t buckets[] = { 7, 7 + (1u << 13), 7 + (1u << 20), 7 + (1u << 24) };
+  std::map<std::uint32_t, std::vector<SoupTriangle>> reference;
+  for (int k = 0; k < 4; ++k)
+  {
+    // Corners of its own first, so that each bucket numbers the common corners differently.
+    for (int filler = 0; filler < k; ++filler)
+    {
+      const SoupTriangle t = MakeTriangle(-1, float(k), float(filler), 1);
+      store.Append(buckets[k], t);
+      reference[buckets[k]].push_back(t);
+    }
+  }
+  for (int i = 0; i < 4000; ++i)
+  {
+    const std::uint32_t bucket = buckets[i % 4];
+    std::vector<SoupTriangle>& expected = reference[bucket];
+    // The same corners in every bucket, two of them shared with the triangle before.
+    SoupTriangle t = MakeTriangle(float(i / 4), 0, 0, 1);
+    if (i >= 4)
+    {
+      std::memcpy(t.V[0], expected.back().V[1], sizeof(t.V[0]));
+      std::memcpy(t.V[2], expected.back().V[2], sizeof(t.V[2]));
+    }
+    store.Append(bucket, t);
+    expected.push_back(t);
+    if (i == 2001)
+    {
+      store.Clear(buckets[1]);
+      reference[buckets[1]].clear();
+      // Its last triangle again: its old corners, in a page that holds none of them yet.
+      store.Append(buckets[1], t);
+      reference[buckets[1]].push_back(t);
+    }
+  }
+  for (const auto& [bucket, expected] : reference)
+  {
+    std::vector<SoupTriangle> got;
+    store.Read(bucket, got);
+    ASSERT_EQ(got.size(), expected.size()) << "bucket " << bucket;
+    for (std::size_t i = 0; i < got.size(); ++i)
+    {
+      ASSERT_EQ(std::memcmp(&got[i], &expected[i], sizeof(SoupTriangle)), 0)
+        << "bucket " << bucket << " triangle " << i;
+    }
+  }
+}
+
 // Triangles that add no corner still take room: the same triangle over and over fills pages
 // with triangle records alone, and every one reads back.
 TEST(BucketStore, PagesOfRepeatedCornersFillUp)
@@ -217,7 +270,7 @@ TEST(Partitioner, RespectsCapacityLosesNothingAndConforms)
     std::vector<Tetra> leaves;
     for (const auto leaf : forest.Leaves())
     {
-      leaves.push_back(forest[leaf].Geometry);
+      leaves.push_back(forest.Geometry(leaf));
       std::vector<SoupTriangle> bucket;
       partitioner.ReadLeaf(leaf, bucket);
       for (const auto& t : bucket)
@@ -225,7 +278,7 @@ TEST(Partitioner, RespectsCapacityLosesNothingAndConforms)
         double c[3];
         partitioner.Centroid(t, c);
         ASSERT_EQ(forest.LeafContaining(c), leaf) << "triangle stored in the wrong leaf";
-        ASSERT_TRUE(forest[leaf].Geometry.Contains(c));
+        ASSERT_TRUE(forest.Geometry(leaf).Contains(c));
       }
       all.insert(all.end(), bucket.begin(), bucket.end());
     }

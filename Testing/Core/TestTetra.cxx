@@ -122,6 +122,49 @@ TEST(Tetra, LongestEdgeIsUniqueAndBisectionIsExact)
   }
 }
 
+TEST(Tetra, SplitPlaneIsOneOfTheKuhnPlanesAndSeparatesTheChildren)
+{
+  // The compact plane (normal of -1, 0, 1, integer offset) must be the exact bisecting plane
+  // at every depth: through the split point and the opposite edge, V[0] on child 0's side.
+  std::mt19937_64 rng(5);
+  const auto value = [](const SplitPlane& plane, const LatticePoint& p) {
+    std::int64_t s = -std::int64_t(plane.Offset);
+    for (int k = 0; k < 3; ++k)
+    {
+      s += std::int64_t(plane.Normal[k]) * p[k];
+    }
+    return s;
+  };
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    const TetId id = RandomPath(rng, MaxLevel);
+    Tetra t = RootTetra(id.RootIndex());
+    for (int bit = id.Level() - 1; bit >= 0; --bit)
+    {
+      const SplitPlane plane = t.Plane();
+      int nonzero = 0;
+      for (const std::int8_t n : plane.Normal)
+      {
+        ASSERT_LE(std::abs(int(n)), 1);
+        nonzero += n != 0;
+      }
+      ASSERT_GE(nonzero, 1);
+      ASSERT_LE(nonzero, 2);
+      ASSERT_EQ(value(plane, t.SplitPoint()), 0);
+      ASSERT_EQ(value(plane, t.V[2]), 0);
+      ASSERT_EQ(value(plane, t.V[3]), 0);
+      ASSERT_GT(value(plane, t.V[0]), 0);
+      ASSERT_LT(value(plane, t.V[1]), 0);
+      for (int c = 0; c < 2; ++c)
+      {
+        const std::array<double, 3> centroid = t.Child(c).Centroid();
+        ASSERT_EQ(plane.ChildContaining(centroid.data()), c);
+      }
+      t = t.Child(int((id.Bits >> bit) & 1u));
+    }
+  }
+}
+
 TEST(Tetra, ShapesRepeatEveryThreeLevels)
 {
   // Longest-edge bisection of the Kuhn cube split yields similar tetrahedra: the split edge
