@@ -65,6 +65,10 @@ public:
   class LeafHint
   {
   public:
+    LeafHint()
+      : Recent(RecentSlots)
+    {
+    }
     /// Whether p is inside `leaf` (still a leaf) by far more than the rounding of any plane
     /// test: then every descent from the roots ends in it, whatever side points on a split
     /// plane take.
@@ -92,14 +96,15 @@ public:
     /// A node's face planes: unit normals pointing inside, and offsets (distance from each
     /// face). Nodes keep no geometry, and a stream goes back and forth between a few leaves
     /// (a row of a scan crosses the leaves the row before crossed): the planes of recent
-    /// leaves are kept, by node.
+    /// leaves are kept, by node number.
     struct FacePlanes
     {
       NodeIndex Node = None;
       double Planes[4][4] = {};
     };
-    static constexpr std::size_t RecentSlots = 64;
-    std::array<FacePlanes, RecentSlots> Recent;
+    /// Enough for the leaves a row of the 50M torus crosses: 1 in 10 settings computes planes.
+    static constexpr std::size_t RecentSlots = 1024;
+    std::vector<FacePlanes> Recent;
     std::size_t Current = 0;
   };
 
