@@ -262,7 +262,6 @@ private:
     {
       fileIndex[std::size_t(order[i])] = std::int32_t(i);
     }
-    std::vector<ModelNode> nodes(order.size());
     ModelWriter writer(outputPath, order.size());
     std::vector<std::uint8_t> bytes;
     // Each level's encoded patches lie together in the scratch file (levels were made one after
@@ -281,7 +280,7 @@ private:
     {
       const TetraForest::Node& tet = Forest[order[i]];
       const NodeResult& r = Results[std::size_t(order[i])];
-      ModelNode& node = nodes[i];
+      ModelNode node;
       std::memset(&node, 0, sizeof(node));
       node.Tet = tet.Id.Bits;
       node.TriangleCount = r.Triangles;
@@ -298,7 +297,7 @@ private:
       std::copy(r.SaturatedSphere, r.SaturatedSphere + 4, node.SaturatedSphere);
       bytes.resize(r.EncodedBytes);
       Encoded.ReadAt(r.EncodedOffset, bytes.data(), bytes.size());
-      writer.AddPatch(bytes.data(), bytes.size());
+      writer.Add(node, bytes.data(), bytes.size());
       const std::size_t level = std::size_t(tet.Id.Level());
       if ((i + 1 == order.size() || Forest[order[i + 1]].Id.Level() != tet.Id.Level()) &&
         levelFirst[level] < levelEnd[level])
@@ -325,9 +324,9 @@ private:
     header.Depth = std::uint32_t(Forest.Depth());
     header.ErrorScale = Options.ErrorScale;
     header.Flags = Input.HasColors ? ModelFlagColors : 0;
-    writer.Commit(header, nodes);
+    writer.Commit(header);
 
-    Stats.Nodes = nodes.size();
+    Stats.Nodes = order.size();
     Stats.Depth = Forest.Depth();
     Stats.FileBytes = std::filesystem::file_size(outputPath);
     Stats.CoarsestError = 0;

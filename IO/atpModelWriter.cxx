@@ -23,6 +23,8 @@ namespace
 {
 // Patches are gathered into large writes; a bigger patch is written on its own.
 constexpr std::size_t BufferBytes = std::size_t(8) << 20;
+/// Nodes written at a time: 1 MiB.
+constexpr std::size_t NodeBufferCount = 8192;
 
 std::uint64_t AlignUp(std::uint64_t value, std::uint64_t alignment)
 {
@@ -76,11 +78,15 @@ ModelWriter::ModelWriter(const std::string& path, std::uint64_t nodeCount)
   : Path(path)
   , NodeCount(nodeCount)
   , PatchStart(PatchSectionOffset(nodeCount))
-  , Hash(new SectionHash)
+  , PatchHash(new SectionHash)
+  , NodeHash(new SectionHash)
 {
-  if (!Hash->State || XXH3_64bits_reset(Hash->State) != XXH_OK)
+  for (SectionHash* hash : { PatchHash.get(), NodeHash.get() })
   {
-    throw std::bad_alloc();
+    if (!hash->State || XXH3_64bits_reset(hash->State) != XXH_OK)
+    {
+      throw std::bad_alloc();
+    }
   }
   // A file without a name until Commit: a build killed at any point (even by SIGKILL) leaves
   // nothing behind. File systems without O_TMPFILE get a named temporary file instead.
@@ -99,7 +105,7 @@ ModelWriter::ModelWriter(const std::string& path, std::uint64_t nodeCount)
     Fail(errno);
   }
   Buffer.reserve(BufferBytes);
-  Patches.reserve(nodeCount);
+  NodeBuffer.reserve(NodeBufferCount);
 }
 
 int ModelWriter::CreateNamedTemporary()
@@ -202,14 +208,21 @@ void ModelWriter::Flush()
     WrittenEnd += Buffer.size();
     Buffer.clear();
   }
+  if (!NodeBuffer.empty())
+  {
+    const std::uint64_t first = NodesAdded - NodeBuffer.size();
+    WriteAt(NodeSectionOffset() + first * sizeof(ModelNode), NodeBuffer.data(),
+      NodeBuffer.size() * sizeof(ModelNode));
+    NodeBuffer.clear();
+  }
 }
 
-void ModelWriter::AddPatch(const void* data, std::size_t bytes)
+void ModelWriter::Add(ModelNode node, const void* data, std::size_t bytes)
 {
   RequireOpen();
-  if (Patches.size() >= NodeCount)
+  if (NodesAdded >= NodeCount)
   {
-    throw std::logic_error("ModelWriter for " + Path + ": more patches than the " +
+    throw std::logic_error("ModelWriter for " + Path + ": more than the " +
       std::to_string(NodeCount) + " nodes");
   }
   if (bytes > UINT32_MAX)
@@ -217,14 +230,24 @@ void ModelWriter::AddPatch(const void* data, std::size_t bytes)
     throw std::length_error("ModelWriter for " + Path + ": a patch of " + std::to_string(bytes) +
       " bytes exceeds the format's 4 GiB limit");
   }
-  Patches.push_back({ PatchEnd, Checksum(data, bytes), std::uint32_t(bytes) });
+  node.PatchOffset = PatchEnd;
+  node.PatchBytes = std::uint32_t(bytes);
+  node.PatchChecksum = Checksum(data, bytes);
+  std::fill(std::begin(node.Reserved), std::end(node.Reserved), std::uint8_t(0));
+  XXH3_64bits_update(NodeHash->State, &node, sizeof(node));
+  if (NodeBuffer.size() == NodeBufferCount)
+  {
+    Flush();
+  }
+  NodeBuffer.push_back(node);
+  ++NodesAdded;
 
   // Zero padding keeps every patch start aligned for the decoders; the section checksum covers
   // it, so the padding is part of the hashed stream.
   static const std::uint8_t zeros[PatchAlignment] = {};
   const std::size_t padding = std::size_t(AlignUp(bytes, PatchAlignment) - bytes);
-  XXH3_64bits_update(Hash->State, data, bytes);
-  XXH3_64bits_update(Hash->State, zeros, padding);
+  XXH3_64bits_update(PatchHash->State, data, bytes);
+  XXH3_64bits_update(PatchHash->State, zeros, padding);
   if (Buffer.size() + bytes + padding > BufferBytes)
   {
     Flush();
@@ -244,25 +267,16 @@ void ModelWriter::AddPatch(const void* data, std::size_t bytes)
   PatchEnd += bytes + padding;
 }
 
-void ModelWriter::Commit(ModelHeader header, std::vector<ModelNode>& nodes)
+void ModelWriter::Commit(ModelHeader header)
 {
   RequireOpen();
-  if (nodes.size() != NodeCount || Patches.size() != NodeCount)
+  if (NodesAdded != NodeCount)
   {
     throw std::logic_error("ModelWriter for " + Path + ": " + std::to_string(NodeCount) +
-      " nodes expected, got " + std::to_string(nodes.size()) + " nodes and " +
-      std::to_string(Patches.size()) + " patches");
+      " nodes expected, got " + std::to_string(NodesAdded));
   }
   Flush();
-
-  for (std::size_t i = 0; i < nodes.size(); ++i)
-  {
-    nodes[i].PatchOffset = Patches[i].Offset;
-    nodes[i].PatchBytes = Patches[i].Bytes;
-    nodes[i].PatchChecksum = Patches[i].Checksum;
-    std::fill(std::begin(nodes[i].Reserved), std::end(nodes[i].Reserved), std::uint8_t(0));
-  }
-  const std::size_t nodeBytes = nodes.size() * sizeof(ModelNode);
+  const std::uint64_t nodeBytes = NodeCount * sizeof(ModelNode);
 
   std::memcpy(header.Magic, ModelMagic, sizeof(header.Magic));
   header.Version = ModelVersion;
@@ -275,14 +289,13 @@ void ModelWriter::Commit(ModelHeader header, std::vector<ModelNode>& nodes)
   header.PatchSectionOffset = PatchStart;
   header.PatchSectionBytes = PatchEnd;
   header.FileBytes = PatchStart + PatchEnd;
-  header.NodeSectionChecksum = Checksum(nodes.data(), nodeBytes);
-  header.PatchSectionChecksum = XXH3_64bits_digest(Hash->State);
+  header.NodeSectionChecksum = XXH3_64bits_digest(NodeHash->State);
+  header.PatchSectionChecksum = XXH3_64bits_digest(PatchHash->State);
   std::fill(std::begin(header.Reserved), std::end(header.Reserved), std::uint8_t(0));
   header.HeaderChecksum = Checksum(&header, offsetof(ModelHeader, HeaderChecksum));
 
   // Gaps between sections were never written and read back as zeros; ftruncate sets the exact
   // length even when the last patches are empty.
-  WriteAt(header.NodeSectionOffset, nodes.data(), nodeBytes);
   WriteAt(0, &header, sizeof(header));
   if (::ftruncate(Fd, off_t(header.FileBytes)) != 0 || ::fsync(Fd) != 0)
   {

@@ -28,20 +28,21 @@ public:
   ModelWriter(const ModelWriter&) = delete;
   ModelWriter& operator=(const ModelWriter&) = delete;
 
-  /// Patches in node order: the i-th call holds node i's patch. Each patch starts 16-byte
-  /// aligned in the file (zero padding between patches). Calling it more than nodeCount times
-  /// throws std::logic_error; a failed write throws std::runtime_error and removes the
-  /// temporary file.
-  void AddPatch(const void* data, std::size_t bytes);
+  /// Nodes in file order, each with its patch: the i-th call holds node i. The writer fills the
+  /// node's PatchOffset, PatchBytes, PatchChecksum and zeroes its reserved bytes; nodes and
+  /// patches go to the file as they come, so writing needs the same memory for any model. Each
+  /// patch starts 16-byte aligned in the file (zero padding between patches). Calling it more
+  /// than nodeCount times throws std::logic_error; a failed write throws std::runtime_error and
+  /// removes the temporary file.
+  void Add(ModelNode node, const void* patch, std::size_t patchBytes);
 
   /// `header`: the caller fills the model fields (box, lattice, quantization, counts, options,
   /// depth, flags, ErrorScale); the writer fills magic, version, byte order, record sizes,
   /// section offsets and sizes, FileBytes, every checksum, and zeroes the reserved bytes.
-  /// `nodes` (nodeCount of them, every patch added) gets PatchOffset, PatchBytes, PatchChecksum
-  /// and zeroed reserved bytes. Writes the sections, fsyncs, renames over `path` and fsyncs the
-  /// directory. Wrong counts throw std::logic_error; after a write failure or a successful
+  /// Writes what is left, fsyncs, renames over `path` and fsyncs the directory. Fewer than
+  /// nodeCount nodes added throws std::logic_error; after a write failure or a successful
   /// Commit the writer is finished and further calls throw std::logic_error.
-  void Commit(ModelHeader header, std::vector<ModelNode>& nodes);
+  void Commit(ModelHeader header);
 
   /// Where the sections go for a model of `nodeCount` nodes (the one layout of version 1).
   static std::uint64_t NodeSectionOffset();
@@ -49,14 +50,9 @@ public:
   static constexpr std::uint64_t PatchAlignment = 16;
 
 private:
-  struct PatchRecord
-  {
-    std::uint64_t Offset;
-    std::uint64_t Checksum;
-    std::uint32_t Bytes;
-  };
   struct SectionHash;
 
+  /// Writes the buffered patches and nodes.
   void Flush();
   void WriteAt(std::uint64_t offset, const void* data, std::size_t bytes);
   /// mkstemp beside the target, for file systems without O_TMPFILE.
@@ -76,8 +72,9 @@ private:
   std::uint64_t PatchEnd = 0;     ///< bytes of the patch section so far, padding included
   std::uint64_t WrittenEnd = 0;   ///< bytes of the patch section already in the file
   std::vector<std::uint8_t> Buffer;
-  std::vector<PatchRecord> Patches;
-  std::unique_ptr<SectionHash> Hash;
+  std::uint64_t NodesAdded = 0;
+  std::vector<ModelNode> NodeBuffer; ///< the nodes after the first NodesAdded - size() ones
+  std::unique_ptr<SectionHash> PatchHash, NodeHash;
 };
 
 } // namespace atp

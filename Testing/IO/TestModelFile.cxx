@@ -18,6 +18,7 @@
 #include <functional>
 #include <iterator>
 #include <limits>
+#include <numeric>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -180,16 +181,19 @@ Model Synthetic(const std::vector<int>& splits = { 2, 6 })
   return m;
 }
 
-// Writes `m` and returns the nodes as written (patch fields filled in).
+// Writes `m` and returns the nodes as the file holds them (patch fields filled in).
 std::vector<ModelNode> Write(const Model& m, const std::string& path)
 {
   ModelWriter writer(path, m.Nodes.size());
-  for (const auto& patch : m.Patches)
+  for (std::size_t i = 0; i < m.Nodes.size(); ++i)
   {
-    writer.AddPatch(patch.data(), patch.size());
+    writer.Add(m.Nodes[i], m.Patches[i].data(), m.Patches[i].size());
   }
-  std::vector<ModelNode> nodes = m.Nodes;
-  writer.Commit(m.Header, nodes);
+  writer.Commit(m.Header);
+  const std::vector<std::uint8_t> bytes = ReadAll(path);
+  std::vector<ModelNode> nodes(m.Nodes.size());
+  std::memcpy(nodes.data(), bytes.data() + ModelWriter::NodeSectionOffset(),
+    nodes.size() * sizeof(ModelNode));
   return nodes;
 }
 
@@ -316,6 +320,29 @@ TEST(ModelFile, MovesKeepTheMap)
   first = std::move(second);
   EXPECT_EQ(first.Node(9).Tet, 41u);
   EXPECT_TRUE(first.Verify().empty());
+}
+
+// The writer streams nodes to the file a buffer at a time: a model of more nodes than one
+// buffer holds (8192) reads back whole, with valid section checksums.
+TEST(ModelWriter, ManyNodesAreWrittenInPieces)
+{
+  TempDirectory dir;
+  const std::string path = dir / "many.atp";
+  std::vector<int> splits(10000);
+  std::iota(splits.begin(), splits.end(), 0); // breadth first: levels in order
+  const Model m = Synthetic(splits);
+  ASSERT_GT(m.Nodes.size(), 2 * 8192u);
+  Write(m, path);
+  const ModelFile file = ModelFile::Open(path);
+  ASSERT_EQ(file.NodeCount(), m.Nodes.size());
+  EXPECT_TRUE(file.Verify().empty());
+  for (std::size_t i = 0; i < file.NodeCount(); ++i)
+  {
+    ASSERT_EQ(file.Node(i).Tet, m.Nodes[i].Tet) << "node " << i;
+    ASSERT_EQ(file.Node(i).Parent, m.Nodes[i].Parent) << "node " << i;
+    ASSERT_EQ(file.Node(i).PatchBytes, m.Patches[i].size()) << "node " << i;
+    ASSERT_TRUE(SameBytes(file.PatchData(i), m.Patches[i])) << "node " << i;
+  }
 }
 
 TEST(ModelFile, DeepestLevelIsValid)
@@ -725,18 +752,23 @@ TEST(ModelWriter, AbandonedWriterLeavesNothing)
     ModelWriter writer(path, m.Nodes.size());
     EXPECT_TRUE(dir.Entries().empty()) << "the temporary file has a name while writing";
     EXPECT_FALSE(fs::exists(path));
-    writer.AddPatch(m.Patches[0].data(), m.Patches[0].size());
+    writer.Add(m.Nodes[0], m.Patches[0].data(), m.Patches[0].size());
   }
   EXPECT_TRUE(dir.Entries().empty());
 
   // Wrong counts are the caller's mistake; the destructor still cleans up.
   {
+    ModelWriter writer(path, 3);
+    writer.Add(m.Nodes[0], "ab", 2);
+    writer.Add(m.Nodes[1], "cd", 2);
+    EXPECT_THROW(writer.Commit(ModelHeader{}), std::logic_error) << "a node short";
+  }
+  EXPECT_TRUE(dir.Entries().empty());
+  {
     ModelWriter writer(path, 2);
-    writer.AddPatch("ab", 2);
-    writer.AddPatch("cd", 2);
-    EXPECT_THROW(writer.AddPatch("ef", 2), std::logic_error);
-    std::vector<ModelNode> nodes(3);
-    EXPECT_THROW(writer.Commit(ModelHeader{}, nodes), std::logic_error);
+    writer.Add(m.Nodes[0], "ab", 2);
+    writer.Add(m.Nodes[1], "cd", 2);
+    EXPECT_THROW(writer.Add(m.Nodes[2], "ef", 2), std::logic_error);
   }
   EXPECT_TRUE(dir.Entries().empty());
 }
@@ -754,9 +786,9 @@ TEST(ModelWriter, AKilledWriterLeavesNothingAndTheOldFileUntouched)
   if (child == 0)
   {
     ModelWriter writer(path, m.Nodes.size());
-    for (const auto& patch : m.Patches)
+    for (std::size_t i = 0; i < m.Nodes.size(); ++i)
     {
-      writer.AddPatch(patch.data(), patch.size());
+      writer.Add(m.Nodes[i], m.Patches[i].data(), m.Patches[i].size());
     }
     ::raise(SIGKILL);
   }
