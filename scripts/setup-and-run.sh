@@ -22,7 +22,7 @@ echo "== atp bench build/bumpy-torus.atp: the standard flythrough, offscreen, ag
 # Offscreen OpenGL still needs an X display: a virtual one when there is none.
 display=()
 if [ -z "${DISPLAY:-}" ]; then
-  display=(xvfb-run -a)
+  display=(bash scripts/headless.sh)
 fi
 "${display[@]}" build/bin/atp bench build/bumpy-torus.atp --frames 120 \
   --compare-full Data/bumpy-torus.ply --csv build/bumpy-torus-frames.csv \

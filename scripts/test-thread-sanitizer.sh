@@ -16,5 +16,5 @@ export TSAN_OPTIONS="halt_on_error=1 abort_on_error=1 suppressions=$PWD/Testing/
 "$build_dir/tests/TestPartitioner" --gtest_filter='*Stream*'
 "$build_dir/tests/TestConstruction" --gtest_filter='*ThreadCount*'
 "$build_dir/tests/TestRenderingCore"
-xvfb-run -a "$build_dir/tests/TestMapper"
+bash scripts/headless.sh "$build_dir/tests/TestMapper"
 echo "ThreadSanitizer: no reports"

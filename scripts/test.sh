@@ -6,4 +6,4 @@ cd "$(dirname "$0")/.."
 bash scripts/build.sh
 build_dir=${ATP_BUILD_DIR:-build}
 # --no-tests=error: a configuration that lost its tests must fail, not pass empty.
-xvfb-run -a ctest --test-dir "$build_dir" --output-on-failure --no-tests=error -j "$(nproc)"
+bash scripts/headless.sh ctest --test-dir "$build_dir" --output-on-failure --no-tests=error -j "$(nproc)"
