@@ -100,7 +100,10 @@ private:
   void ForgetLast(BucketIndex bucket)
   {
     LastTriangle& last = LastOf(bucket);
-    last.Bucket = last.Bucket == bucket ? ~BucketIndex(0) : last.Bucket;
+    if (last.Bucket == bucket)
+    {
+      last.Bucket = ~BucketIndex(0);
+    }
   }
 
   enum class FrameState : char

@@ -97,8 +97,7 @@ bool TetraForest::SplitDiamond(NodeIndex node, const std::function<void(NodeInde
 void TetraForest::LeafHint::Set(const TetraForest& forest, NodeIndex leaf)
 {
   this->Leaf = leaf;
-  this->Current = std::size_t(leaf) % RecentSlots;
-  FacePlanes& faces = this->Recent[this->Current];
+  FacePlanes& faces = this->Recent[std::size_t(leaf) % RecentSlots];
   if (faces.Node == leaf)
   {
     return; // a node's geometry never changes

@@ -78,7 +78,7 @@ public:
       {
         return false;
       }
-      for (const auto& plane : this->Recent[this->Current].Planes)
+      for (const auto& plane : this->Recent[std::size_t(this->Leaf) % RecentSlots].Planes)
       {
         if (plane[0] * p[0] + plane[1] * p[1] + plane[2] * p[2] + plane[3] <= Margin)
         {
@@ -105,7 +105,6 @@ public:
     /// Enough for the leaves a row of the 50M torus crosses: 1 in 10 settings computes planes.
     static constexpr std::size_t RecentSlots = 1024;
     std::vector<FacePlanes> Recent;
-    std::size_t Current = 0;
   };
 
   /// LeafContaining for many points at once: points that `hint` holds need no descent, the
