@@ -6,6 +6,12 @@
 namespace atp
 {
 
+namespace
+{
+/// A barycentric coordinate above this puts a point inside its member whatever the rounding.
+constexpr double ClearlyInside = 1e-6;
+}
+
 MemberLocator::MemberLocator(const std::vector<Tetra>& members, const LatticeFrame& frame)
   : Frame(frame)
 {
@@ -66,6 +72,11 @@ int MemberLocator::MemberOf(const double p[3]) const
     for (const auto& row : Members[m].Rows)
     {
       inside = std::min(inside, row[0] * q[0] + row[1] * q[1] + row[2] * q[2] + row[3]);
+    }
+    // Well inside one member (rounding is about 1e-13 here): no other can beat it.
+    if (inside > ClearlyInside)
+    {
+      return int(m);
     }
     if (inside > bestInside)
     {

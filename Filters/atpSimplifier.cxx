@@ -114,8 +114,13 @@ private:
   void Evaluate(std::uint32_t u, bool checkLegal);
   /// After a neighbor of x collapsed onto v: x's queued collapse keeps its cost (x's quadric and
   /// its target's position are unchanged), so only the new candidate x -> v needs pricing,
-  /// unless x lost its target or has nothing queued.
+  /// unless x lost its target or has nothing queued. With several regions, the regions of the
+  /// triangles x -> v removes come from NoteRegionsAround(v).
   void Offer(std::uint32_t x, std::uint32_t v);
+  /// For each neighbor x of v: the regions of the triangles where v follows x and where v
+  /// precedes x (those x -> v would remove), marked with StampV in MarkV. One walk around v
+  /// instead of one around every neighbor.
+  void NoteRegionsAround(std::uint32_t v);
   /// The collapse u -> target, which removes a triangle of regionA and one of regionB.
   Candidate Price(std::uint32_t u, std::uint32_t target, int regionA, int regionB) const;
   void Queue(std::uint32_t u, const Candidate& candidate);
@@ -185,6 +190,7 @@ private:
   std::vector<std::int64_t> Delta;
   std::vector<int> Touched;
   std::vector<std::uint32_t> MarkU, CountU, MarkV, CountV, SlotU;
+  std::vector<int> RegionFollowing, RegionPreceding;
   std::uint32_t StampU = 0, StampV = 0;
 };
 
@@ -259,6 +265,11 @@ Simplifier::Simplifier(const PatchMesh& mesh, int regionCount, const RegionFunct
   MarkV.assign(VertexCount, 0);
   CountV.assign(VertexCount, 0);
   SlotU.assign(VertexCount, 0);
+  if (regionCount > 1)
+  {
+    RegionFollowing.assign(VertexCount, 0);
+    RegionPreceding.assign(VertexCount, 0);
+  }
   Queues.resize(std::size_t(regionCount));
   Counts.assign(std::size_t(regionCount), 0);
   Delta.assign(std::size_t(regionCount), 0);
@@ -534,32 +545,12 @@ void Simplifier::BuildQuadrics()
 // non-manifold, no triangle is removed with both other edges open (an isolated triangle would
 // vanish), the mesh is not a tetrahedron-like pocket (a moved triangle would duplicate one of
 // v), and no moved triangle flips, degenerates or faces against its corners' input normals.
-// Fan must hold u's fan.
+// Fan must hold u's fan. The geometric tests come first: they reject most candidates (flips and
+// normals, 4 in 10 on the brain) and need no walk around v.
 bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
 {
-  ++StampV;
-  for (std::uint32_t c = FirstCorner[v]; c != None; c = Link[c])
-  {
-    const std::uint32_t t = c / 3;
-    if (TriangleRemoved[t])
-    {
-      continue;
-    }
-    const int k = int(c % 3);
-    for (std::uint32_t x : { Indices[3 * t + std::uint32_t(NextCorner(k))], Indices[3 * t + std::uint32_t(PrevCorner(k))] })
-    {
-      if (MarkV[x] != StampV)
-      {
-        MarkV[x] = StampV;
-        CountV[x] = 0;
-      }
-      ++CountV[x];
-    }
-  }
-
   std::uint32_t opposite[2] = { None, None };
   int opposites = 0;
-  ++StampU;
   for (std::uint32_t c : Fan)
   {
     const std::uint32_t t = c / 3;
@@ -574,32 +565,14 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
       }
       opposite[opposites++] = x == v ? y : x;
     }
-    for (std::uint32_t z : { x, y })
-    {
-      if (MarkU[z] != StampU)
-      {
-        MarkU[z] = StampU;
-        CountU[z] = 0;
-      }
-      ++CountU[z];
-    }
   }
   if (opposites == 0)
   {
     return false;
   }
-  for (int i = 0; i < opposites; ++i)
-  {
-    const std::uint32_t w = opposite[i];
-    if (CountV[w] > 2 || (CountV[w] == 1 && CountU[w] == 1))
-    {
-      return false;
-    }
-  }
 
   const double* pu = Position(u);
   const double* pv = Position(v);
-  bool movesPocket = false;
   for (std::uint32_t c : Fan)
   {
     const std::uint32_t t = c / 3;
@@ -610,15 +583,6 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
     {
       continue;
     }
-    for (std::uint32_t z : { x, y })
-    {
-      if (MarkV[z] == StampV && z != opposite[0] && z != opposite[1])
-      {
-        return false;
-      }
-    }
-    movesPocket = movesPocket || (opposites == 2 && MarkV[x] == StampV && MarkV[y] == StampV);
-
     const double* px = Position(x);
     const double* py = Position(y);
     double a[3], b[3], before[3], after[3];
@@ -646,6 +610,69 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
         }
       }
     }
+  }
+
+  ++StampV;
+  for (std::uint32_t c = FirstCorner[v]; c != None; c = Link[c])
+  {
+    const std::uint32_t t = c / 3;
+    if (TriangleRemoved[t])
+    {
+      continue;
+    }
+    const int k = int(c % 3);
+    for (std::uint32_t x : { Indices[3 * t + std::uint32_t(NextCorner(k))], Indices[3 * t + std::uint32_t(PrevCorner(k))] })
+    {
+      if (MarkV[x] != StampV)
+      {
+        MarkV[x] = StampV;
+        CountV[x] = 0;
+      }
+      ++CountV[x];
+    }
+  }
+  ++StampU;
+  for (std::uint32_t c : Fan)
+  {
+    const std::uint32_t t = c / 3;
+    const int k = int(c % 3);
+    for (std::uint32_t z : { Indices[3 * t + std::uint32_t(NextCorner(k))], Indices[3 * t + std::uint32_t(PrevCorner(k))] })
+    {
+      if (MarkU[z] != StampU)
+      {
+        MarkU[z] = StampU;
+        CountU[z] = 0;
+      }
+      ++CountU[z];
+    }
+  }
+  for (int i = 0; i < opposites; ++i)
+  {
+    const std::uint32_t w = opposite[i];
+    if (CountV[w] > 2 || (CountV[w] == 1 && CountU[w] == 1))
+    {
+      return false;
+    }
+  }
+  bool movesPocket = false;
+  for (std::uint32_t c : Fan)
+  {
+    const std::uint32_t t = c / 3;
+    const int k = int(c % 3);
+    const std::uint32_t x = Indices[3 * t + std::uint32_t(NextCorner(k))];
+    const std::uint32_t y = Indices[3 * t + std::uint32_t(PrevCorner(k))];
+    if (x == v || y == v)
+    {
+      continue;
+    }
+    for (std::uint32_t z : { x, y })
+    {
+      if (MarkV[z] == StampV && z != opposite[0] && z != opposite[1])
+      {
+        return false;
+      }
+    }
+    movesPocket = movesPocket || (opposites == 2 && MarkV[x] == StampV && MarkV[y] == StampV);
   }
   if (movesPocket)
   {
@@ -762,6 +789,33 @@ void Simplifier::Evaluate(std::uint32_t u, bool checkLegal)
   }
 }
 
+void Simplifier::NoteRegionsAround(std::uint32_t v)
+{
+  ++StampV;
+  for (std::uint32_t c = FirstCorner[v]; c != None; c = Link[c])
+  {
+    const std::uint32_t t = c / 3;
+    if (TriangleRemoved[t])
+    {
+      continue;
+    }
+    const int k = int(c % 3);
+    const std::uint32_t before = Indices[3 * t + std::uint32_t(PrevCorner(k))];
+    const std::uint32_t after = Indices[3 * t + std::uint32_t(NextCorner(k))];
+    for (std::uint32_t x : { before, after })
+    {
+      if (MarkV[x] != StampV)
+      {
+        MarkV[x] = StampV;
+        RegionFollowing[x] = 0;
+        RegionPreceding[x] = 0;
+      }
+    }
+    RegionFollowing[before] = TriangleRegion[t];
+    RegionPreceding[after] = TriangleRegion[t];
+  }
+}
+
 void Simplifier::Offer(std::uint32_t x, std::uint32_t v)
 {
   if (Kind[x] != VertexKind::Free || Best[x].Target == None || Kind[Best[x].Target] == VertexKind::Removed)
@@ -769,19 +823,9 @@ void Simplifier::Offer(std::uint32_t x, std::uint32_t v)
     Evaluate(x, false);
     return;
   }
-  // The triangles x -> v removes: where v follows x, and where it precedes x.
-  int regionA = 0, regionB = 0;
-  for (std::uint32_t c = FirstCorner[x]; RegionCount > 1 && c != None; c = Link[c])
-  {
-    const std::uint32_t t = c / 3;
-    if (!TriangleRemoved[t])
-    {
-      const int k = int(c % 3);
-      regionA = Indices[3 * t + std::uint32_t(NextCorner(k))] == v ? TriangleRegion[t] : regionA;
-      regionB = Indices[3 * t + std::uint32_t(PrevCorner(k))] == v ? TriangleRegion[t] : regionB;
-    }
-  }
-  const Candidate candidate = Price(x, v, regionA, regionB);
+  const bool noted = RegionCount > 1 && MarkV[x] == StampV;
+  const Candidate candidate =
+    Price(x, v, noted ? RegionFollowing[x] : 0, noted ? RegionPreceding[x] : 0);
   if (Before(candidate, Best[x]))
   {
     Queue(x, candidate);
@@ -1024,6 +1068,10 @@ SimplifyResult Simplifier::Run()
     }
     Collapse(u, v);
     Excess += change;
+    if (RegionCount > 1)
+    {
+      NoteRegionsAround(v);
+    }
     for (std::uint32_t x : Neighbors)
     {
       if (x == v)
