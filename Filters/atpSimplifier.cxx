@@ -551,6 +551,8 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
 {
   std::uint32_t opposite[2] = { None, None };
   int opposites = 0;
+  const double* pu = Position(u);
+  const double* pv = Position(v);
   for (std::uint32_t c : Fan)
   {
     const std::uint32_t t = c / 3;
@@ -564,23 +566,6 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
         return false;
       }
       opposite[opposites++] = x == v ? y : x;
-    }
-  }
-  if (opposites == 0)
-  {
-    return false;
-  }
-
-  const double* pu = Position(u);
-  const double* pv = Position(v);
-  for (std::uint32_t c : Fan)
-  {
-    const std::uint32_t t = c / 3;
-    const int k = int(c % 3);
-    const std::uint32_t x = Indices[3 * t + std::uint32_t(NextCorner(k))];
-    const std::uint32_t y = Indices[3 * t + std::uint32_t(PrevCorner(k))];
-    if (x == v || y == v)
-    {
       continue;
     }
     const double* px = Position(x);
@@ -611,6 +596,10 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
       }
     }
   }
+  if (opposites == 0)
+  {
+    return false;
+  }
 
   ++StampV;
   for (std::uint32_t c = FirstCorner[v]; c != None; c = Link[c])
@@ -632,11 +621,15 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
     }
   }
   ++StampU;
+  bool movesPocket = false;
   for (std::uint32_t c : Fan)
   {
     const std::uint32_t t = c / 3;
     const int k = int(c % 3);
-    for (std::uint32_t z : { Indices[3 * t + std::uint32_t(NextCorner(k))], Indices[3 * t + std::uint32_t(PrevCorner(k))] })
+    const std::uint32_t x = Indices[3 * t + std::uint32_t(NextCorner(k))];
+    const std::uint32_t y = Indices[3 * t + std::uint32_t(PrevCorner(k))];
+    const bool moves = x != v && y != v;
+    for (std::uint32_t z : { x, y })
     {
       if (MarkU[z] != StampU)
       {
@@ -644,7 +637,12 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
         CountU[z] = 0;
       }
       ++CountU[z];
+      if (moves && MarkV[z] == StampV && z != opposite[0] && z != opposite[1])
+      {
+        return false;
+      }
     }
+    movesPocket = movesPocket || (moves && opposites == 2 && MarkV[x] == StampV && MarkV[y] == StampV);
   }
   for (int i = 0; i < opposites; ++i)
   {
@@ -653,26 +651,6 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
     {
       return false;
     }
-  }
-  bool movesPocket = false;
-  for (std::uint32_t c : Fan)
-  {
-    const std::uint32_t t = c / 3;
-    const int k = int(c % 3);
-    const std::uint32_t x = Indices[3 * t + std::uint32_t(NextCorner(k))];
-    const std::uint32_t y = Indices[3 * t + std::uint32_t(PrevCorner(k))];
-    if (x == v || y == v)
-    {
-      continue;
-    }
-    for (std::uint32_t z : { x, y })
-    {
-      if (MarkV[z] == StampV && z != opposite[0] && z != opposite[1])
-      {
-        return false;
-      }
-    }
-    movesPocket = movesPocket || (opposites == 2 && MarkV[x] == StampV && MarkV[y] == StampV);
   }
   if (movesPocket)
   {
