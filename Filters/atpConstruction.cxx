@@ -12,7 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
-#include <numeric>
+#include <utility>
 
 namespace atp
 {
@@ -20,7 +20,9 @@ namespace
 {
 using NodeIndex = TetraForest::NodeIndex;
 
-/// What construction knows about one tetrahedron once its patch is made.
+/// What construction knows about one tetrahedron once its patch is made. Kept while its level
+/// or its parent's is being made, then written out as its node record (`ModelConstruction::Spill`):
+/// the build holds two levels of these, not the whole forest's.
 struct NodeResult
 {
   PatchStore::Handle Intermediate; ///< full-precision patch, until the parent diamond reads it
@@ -33,6 +35,18 @@ struct NodeResult
   float Sphere[4] = { 0, 0, 0, 0 };
   float SaturatedSphere[4] = { 0, 0, 0, 0 };
   NormalCone Cone; ///< saturated: holds the face normals of the patch and of all descendants
+};
+
+/// The nodes of one level in file order (by the Morton code of their centroid, then by id, so
+/// that the tetrahedra a cut visits together lie together in the file), and where their records
+/// and encoded patches wait for the model file.
+struct Level
+{
+  std::vector<NodeIndex> Nodes;
+  std::int32_t FirstFileIndex = 0;
+  std::uint64_t SpillOffset = 0;                  ///< of its node records in the node scratch
+  std::uint64_t EncodedFirst = ~std::uint64_t(0); ///< its encoded patches in their scratch
+  std::uint64_t EncodedEnd = 0;
 };
 
 class ModelConstruction
@@ -51,18 +65,14 @@ public:
     , Runner(options.Runner ? *options.Runner : *OwnRunner)
     , Intermediate(options.ScratchDirectory)
     , Encoded(options.ScratchDirectory)
-    , Results(partition.Forest().Size())
+    , NodeSpill(options.ScratchDirectory)
   {
   }
 
   ConstructionStats Run(const std::string& outputPath)
   {
     Runner.Begin(Context);
-    std::vector<std::vector<NodeIndex>> levels(std::size_t(Forest.Depth()) + 1);
-    for (NodeIndex n = 0; n < NodeIndex(Forest.Size()); ++n)
-    {
-      levels[std::size_t(Forest[n].Id.Level())].push_back(n);
-    }
+    NumberNodes();
     // The intermediate patches of the level below, all read by this level's diamonds, go back
     // to the file system at once when the level is done: one hole punched per level, not one
     // per patch (a punch can wait on the file system's journal).
@@ -70,22 +80,82 @@ public:
     for (int level = Forest.Depth(); level >= 0; --level)
     {
       const std::uint64_t levelStart = Intermediate.BytesWritten();
+      CurrentLevel = level;
+      Current.assign(Levels[std::size_t(level)].Nodes.size(), NodeResult());
+      // Made in node order, as the forest grew: the order the buckets were filled in.
       std::vector<NodeIndex> leaves, inner;
-      for (NodeIndex n : levels[std::size_t(level)])
+      for (NodeIndex n : Levels[std::size_t(level)].Nodes)
       {
         (Forest[n].IsLeaf() ? leaves : inner).push_back(n);
       }
+      std::sort(leaves.begin(), leaves.end());
+      std::sort(inner.begin(), inner.end());
       MakeLeafPatches(leaves, level > 0);
       SaturateLeafDiamonds(leaves);
       SimplifyDiamonds(inner, level > 0);
       Intermediate.Release({ levelBelowStart, levelStart - levelBelowStart });
       levelBelowStart = levelStart;
+      if (level < Forest.Depth())
+      {
+        Spill(level + 1, Below);
+      }
+      Below = std::move(Current);
+      Current = std::vector<NodeResult>();
     }
+    // Below now holds level 0: the roots.
+    Stats.CoarsestError = 0;
+    for (const NodeResult& root : Below)
+    {
+      Stats.CoarsestError = std::max(Stats.CoarsestError, root.SaturatedError);
+    }
+    Spill(0, Below);
+    Below = std::vector<NodeResult>();
     Write(outputPath);
     return Stats;
   }
 
 private:
+  /// Groups the nodes by level in file order and gives each its index in the file.
+  void NumberNodes()
+  {
+    Levels.assign(std::size_t(Forest.Depth()) + 1, Level());
+    for (NodeIndex n = 0; n < NodeIndex(Forest.Size()); ++n)
+    {
+      Levels[std::size_t(Forest[n].Id.Level())].Nodes.push_back(n);
+    }
+    FileIndex.assign(Forest.Size(), 0);
+    std::int32_t next = 0;
+    for (Level& level : Levels)
+    {
+      std::vector<std::pair<std::pair<std::uint64_t, std::uint64_t>, NodeIndex>> keys;
+      keys.reserve(level.Nodes.size());
+      for (NodeIndex n : level.Nodes)
+      {
+        keys.push_back({ { CentroidMorton(Forest.Geometry(n)), Forest[n].Id.Bits }, n });
+      }
+      std::sort(keys.begin(), keys.end());
+      level.FirstFileIndex = next;
+      for (std::size_t i = 0; i < keys.size(); ++i)
+      {
+        level.Nodes[i] = keys[i].second;
+        FileIndex[std::size_t(keys[i].second)] = next++;
+      }
+    }
+  }
+
+  /// The result of a node of the level being made or of the one below it.
+  const NodeResult& Result(NodeIndex n) const
+  {
+    const int level = Forest[n].Id.Level();
+    const std::size_t slot =
+      std::size_t(FileIndex[std::size_t(n)] - Levels[std::size_t(level)].FirstFileIndex);
+    return level == CurrentLevel ? Current[slot] : Below[slot];
+  }
+  NodeResult& Result(NodeIndex n)
+  {
+    return const_cast<NodeResult&>(std::as_const(*this).Result(n));
+  }
+
   void ReportProgress(std::size_t nodesDone)
   {
     Done += nodesDone;
@@ -100,7 +170,7 @@ private:
   /// for the parent diamond when there is one.
   void Store(NodeIndex node, const MadePatch& made, bool hasParent)
   {
-    NodeResult& r = Results[std::size_t(node)];
+    NodeResult& r = Result(node);
     r.EncodedOffset = EncodedEnd;
     r.EncodedBytes = std::uint32_t(made.Encoded.size());
     Encoded.WriteAt(EncodedEnd, made.Encoded.data(), made.Encoded.size());
@@ -115,7 +185,7 @@ private:
     Stats.StoredTriangles += r.Triangles;
     Stats.PatchBytes += made.Encoded.size();
     Stats.PeakScratchBytes =
-      std::max(Stats.PeakScratchBytes, EncodedEnd + Intermediate.PeakBytes());
+      std::max(Stats.PeakScratchBytes, EncodedEnd + Intermediate.PeakBytes() + NodeSpillEnd);
   }
 
   /// Leaves keep the input at full resolution: their bucket, welded into an indexed patch.
@@ -129,7 +199,7 @@ private:
       },
       [&](std::size_t i, PatchJobResult& made) {
         Store(leaves[i], made.Patches[0], haveParents);
-        Results[std::size_t(leaves[i])].Cone = made.Patches[0].Cone;
+        Result(leaves[i]).Cone = made.Patches[0].Cone;
         ReportProgress(1);
       });
   }
@@ -143,13 +213,13 @@ private:
       std::vector<Sphere> spheres;
       for (NodeIndex m : members)
       {
-        spheres.push_back(LoadSphere(Results[std::size_t(m)].Sphere));
+        spheres.push_back(LoadSphere(Result(m).Sphere));
       }
       float saturated[4];
       StoreSphere(EnclosingSphere(spheres), saturated);
       for (NodeIndex m : members)
       {
-        std::copy(saturated, saturated + 4, Results[std::size_t(m)].SaturatedSphere);
+        std::copy(saturated, saturated + 4, Result(m).SaturatedSphere);
       }
     }
   }
@@ -193,8 +263,8 @@ private:
       for (NodeIndex c : Forest[m].Children())
       {
         job.Children.emplace_back();
-        Intermediate.Get(Results[std::size_t(c)].Intermediate, job.Children.back());
-        job.ChildError = std::max(job.ChildError, Results[std::size_t(c)].Error);
+        Intermediate.Get(Result(c).Intermediate, job.Children.back());
+        job.ChildError = std::max(job.ChildError, Result(c).Error);
       }
     }
   }
@@ -210,16 +280,16 @@ private:
     {
       const NodeIndex m = members[i];
       Store(m, made.Patches[i], haveParents);
-      spheres.push_back(LoadSphere(Results[std::size_t(m)].Sphere));
+      spheres.push_back(LoadSphere(Result(m).Sphere));
       std::vector<NormalCone> cones{ made.Patches[i].Cone };
       for (NodeIndex c : Forest[m].Children())
       {
-        NodeResult& child = Results[std::size_t(c)];
+        const NodeResult& child = Result(c);
         childSaturatedError = std::max(childSaturatedError, child.SaturatedError);
         spheres.push_back(LoadSphere(child.SaturatedSphere));
         cones.push_back(child.Cone);
       }
-      Results[std::size_t(m)].Cone = EnclosingCone(cones);
+      Result(m).Cone = EnclosingCone(cones);
     }
     const double error = made.Error;
     const double saturatedError = std::max(error, childSaturatedError);
@@ -227,7 +297,7 @@ private:
     StoreSphere(EnclosingSphere(spheres), saturatedSphere);
     for (NodeIndex m : members)
     {
-      NodeResult& r = Results[std::size_t(m)];
+      NodeResult& r = Result(m);
       r.Error = error;
       r.SaturatedError = saturatedError;
       std::copy(saturatedSphere, saturatedSphere + 4, r.SaturatedSphere);
@@ -237,73 +307,76 @@ private:
     Stats.QuotaMisses += !made.QuotasMet;
   }
 
-  /// Nodes in file order: by level, then by the Morton code of their centroid, so the
-  /// tetrahedra a cut visits together lie together in the file.
-  std::vector<NodeIndex> FileOrder() const
+  /// Writes the finished records of a level (`results` in file order) to the node scratch, each
+  /// holding its encoded patch's place in PatchOffset and PatchBytes until Write copies it.
+  void Spill(int levelIndex, const std::vector<NodeResult>& results)
   {
-    std::vector<std::pair<std::pair<int, std::uint64_t>, std::uint64_t>> keys(Forest.Size());
-    for (NodeIndex n = 0; n < NodeIndex(Forest.Size()); ++n)
+    Level& level = Levels[std::size_t(levelIndex)];
+    level.SpillOffset = NodeSpillEnd;
+    std::vector<ModelNode> records;
+    records.reserve(std::min(results.size(), RecordsPerIo));
+    for (std::size_t i = 0; i < results.size(); ++i)
     {
-      keys[std::size_t(n)] = { { Forest[n].Id.Level(), CentroidMorton(Forest.Geometry(n)) },
-        Forest[n].Id.Bits };
-    }
-    std::vector<NodeIndex> order(Forest.Size());
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(),
-      [&keys](NodeIndex a, NodeIndex b) { return keys[std::size_t(a)] < keys[std::size_t(b)]; });
-    return order;
-  }
-
-  void Write(const std::string& outputPath)
-  {
-    const std::vector<NodeIndex> order = FileOrder();
-    std::vector<std::int32_t> fileIndex(Forest.Size());
-    for (std::size_t i = 0; i < order.size(); ++i)
-    {
-      fileIndex[std::size_t(order[i])] = std::int32_t(i);
-    }
-    ModelWriter writer(outputPath, order.size());
-    std::vector<std::uint8_t> bytes;
-    // Each level's encoded patches lie together in the scratch file (levels were made one after
-    // the other) and are copied out together (the file is ordered by level): the model grows as
-    // the scratch shrinks, one level, and one hole punch, at a time.
-    std::vector<std::uint64_t> levelFirst(std::size_t(Forest.Depth()) + 1, ~std::uint64_t(0));
-    std::vector<std::uint64_t> levelEnd(levelFirst.size(), 0);
-    for (NodeIndex n = 0; n < NodeIndex(Forest.Size()); ++n)
-    {
-      const std::size_t level = std::size_t(Forest[n].Id.Level());
-      const NodeResult& r = Results[std::size_t(n)];
-      levelFirst[level] = std::min(levelFirst[level], r.EncodedOffset);
-      levelEnd[level] = std::max(levelEnd[level], r.EncodedOffset + r.EncodedBytes);
-    }
-    for (std::size_t i = 0; i < order.size(); ++i)
-    {
-      const TetraForest::Node& tet = Forest[order[i]];
-      const NodeResult& r = Results[std::size_t(order[i])];
+      const TetraForest::Node& tet = Forest[level.Nodes[i]];
+      const NodeResult& r = results[i];
       ModelNode node;
       std::memset(&node, 0, sizeof(node));
       node.Tet = tet.Id.Bits;
+      node.PatchOffset = r.EncodedOffset;
+      node.PatchBytes = r.EncodedBytes;
       node.TriangleCount = r.Triangles;
       node.VertexCount = r.Vertices;
-      node.Parent = tet.Parent == TetraForest::None ? -1 : fileIndex[std::size_t(tet.Parent)];
+      node.Parent = tet.Parent == TetraForest::None ? -1 : FileIndex[std::size_t(tet.Parent)];
       for (int c = 0; c < 2; ++c)
       {
-        node.Children[c] = tet.IsLeaf() ? -1 : fileIndex[std::size_t(tet.Child(c))];
+        node.Children[c] = tet.IsLeaf() ? -1 : FileIndex[std::size_t(tet.Child(c))];
       }
       std::copy(r.Sphere, r.Sphere + 4, node.Sphere);
       StoreCone(r.Cone, node.ConeAxis, node.ConeCos);
       node.Error = float(r.Error);
       node.SaturatedError = float(r.SaturatedError);
       std::copy(r.SaturatedSphere, r.SaturatedSphere + 4, node.SaturatedSphere);
-      bytes.resize(r.EncodedBytes);
-      Encoded.ReadAt(r.EncodedOffset, bytes.data(), bytes.size());
-      writer.Add(node, bytes.data(), bytes.size());
-      const std::size_t level = std::size_t(tet.Id.Level());
-      if ((i + 1 == order.size() || Forest[order[i + 1]].Id.Level() != tet.Id.Level()) &&
-        levelFirst[level] < levelEnd[level])
+      level.EncodedFirst = std::min(level.EncodedFirst, r.EncodedOffset);
+      level.EncodedEnd = std::max(level.EncodedEnd, r.EncodedOffset + r.EncodedBytes);
+      records.push_back(node);
+      if (records.size() == RecordsPerIo || i + 1 == results.size())
       {
-        Encoded.Release(levelFirst[level], levelEnd[level] - levelFirst[level]);
+        NodeSpill.WriteAt(NodeSpillEnd, records.data(), records.size() * sizeof(ModelNode));
+        NodeSpillEnd += records.size() * sizeof(ModelNode);
+        records.clear();
       }
+    }
+    Stats.PeakScratchBytes =
+      std::max(Stats.PeakScratchBytes, EncodedEnd + Intermediate.PeakBytes() + NodeSpillEnd);
+  }
+
+  void Write(const std::string& outputPath)
+  {
+    ModelWriter writer(outputPath, Forest.Size());
+    std::vector<ModelNode> records;
+    std::vector<std::uint8_t> bytes;
+    // Each level's encoded patches lie together in the scratch file (levels were made one after
+    // the other) and are copied out together (the file is ordered by level): the model grows as
+    // the scratch shrinks, one level, and one hole punch, at a time.
+    for (const Level& level : Levels)
+    {
+      for (std::size_t first = 0; first < level.Nodes.size(); first += RecordsPerIo)
+      {
+        records.resize(std::min(RecordsPerIo, level.Nodes.size() - first));
+        NodeSpill.ReadAt(level.SpillOffset + first * sizeof(ModelNode), records.data(),
+          records.size() * sizeof(ModelNode));
+        for (const ModelNode& node : records)
+        {
+          bytes.resize(node.PatchBytes);
+          Encoded.ReadAt(node.PatchOffset, bytes.data(), bytes.size());
+          writer.Add(node, bytes.data(), bytes.size());
+        }
+      }
+      if (level.EncodedFirst < level.EncodedEnd)
+      {
+        Encoded.Release(level.EncodedFirst, level.EncodedEnd - level.EncodedFirst);
+      }
+      NodeSpill.Release(level.SpillOffset, level.Nodes.size() * sizeof(ModelNode));
     }
     ModelHeader header;
     std::memset(&header, 0, sizeof(header));
@@ -326,14 +399,9 @@ private:
     header.Flags = Input.HasColors ? ModelFlagColors : 0;
     writer.Commit(header);
 
-    Stats.Nodes = order.size();
+    Stats.Nodes = Forest.Size();
     Stats.Depth = Forest.Depth();
     Stats.FileBytes = std::filesystem::file_size(outputPath);
-    Stats.CoarsestError = 0;
-    for (NodeIndex root = 0; root < RootCount; ++root)
-    {
-      Stats.CoarsestError = std::max(Stats.CoarsestError, Results[std::size_t(root)].SaturatedError);
-    }
     if (Progress)
     {
       Progress(1);
@@ -352,7 +420,15 @@ private:
   PatchStore Intermediate;
   ScratchFile Encoded;
   std::uint64_t EncodedEnd = 0;
-  std::vector<NodeResult> Results;
+  /// Node records of finished levels, deepest first, until Write copies them in file order.
+  ScratchFile NodeSpill;
+  std::uint64_t NodeSpillEnd = 0;
+  static constexpr std::size_t RecordsPerIo = 8192;
+  std::vector<Level> Levels;
+  std::vector<std::int32_t> FileIndex; ///< per node
+  int CurrentLevel = -1;
+  std::vector<NodeResult> Current; ///< the level being made, in file order
+  std::vector<NodeResult> Below;   ///< the level below it, read by its diamonds
   std::size_t Done = 0;
   ConstructionStats Stats;
 };

@@ -545,3 +545,37 @@ TEST_F(Construction, InputColorsReachEveryLevel)
   EXPECT_TRUE(atp::ExtractCut(model, atp::SelectLevel(model, 0)).HasColors());
   std::remove(path.c_str());
 }
+
+TEST(ConstructionFileOrder, LevelsLargerThanOneWriteComeOutInLevelAndMortonOrder)
+{
+  // Tiny leaves give levels of more nodes than construction moves per read or write of its node
+  // records (8192): their records still reach the file whole, linked, and in file order.
+  vtkNew<vtkPolyData> mesh;
+  mesh->DeepCopy(Torus(160, 80, 0));
+  const std::string path = TempPath("many-nodes.atp");
+  ASSERT_EQ(BuildModel(mesh, path, 2, 2, 16), 1);
+  const atp::ModelFile model = atp::ModelFile::Open(path); // checks levels and links
+  std::map<int, std::size_t> perLevel;
+  std::uint64_t leafTriangles = 0;
+  for (std::uint32_t i = 0; i < model.NodeCount(); ++i)
+  {
+    const atp::ModelNode& n = model.Node(i);
+    const atp::TetId id{ n.Tet };
+    ++perLevel[id.Level()];
+    leafTriangles += n.Children[0] < 0 ? n.TriangleCount : 0;
+    if (i > 0 && atp::TetId{ model.Node(i - 1).Tet }.Level() == id.Level())
+    {
+      const atp::TetId previous{ model.Node(i - 1).Tet };
+      const auto key = [](atp::TetId t) { return std::make_pair(atp::CentroidMorton(atp::TetraOf(t)), t.Bits); };
+      EXPECT_LT(key(previous), key(id)) << "node " << i;
+    }
+  }
+  std::size_t largest = 0;
+  for (const auto& [level, count] : perLevel)
+  {
+    largest = std::max(largest, count);
+  }
+  EXPECT_GT(largest, std::size_t(8192));
+  EXPECT_EQ(leafTriangles, model.Header().InputTriangles);
+  std::remove(path.c_str());
+}
