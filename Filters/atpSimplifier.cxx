@@ -134,6 +134,18 @@ private:
   {
     return Indices[3 * t] == v || Indices[3 * t + 1] == v || Indices[3 * t + 2] == v;
   }
+  /// Calls visit(t, k) for every live triangle t around v, v being its corner k.
+  template <typename Visit>
+  void ForEachCorner(std::uint32_t v, Visit visit) const
+  {
+    for (std::uint32_t c = FirstCorner[v]; c != None; c = Link[c])
+    {
+      if (!TriangleRemoved[c / 3])
+      {
+        visit(c / 3, int(c % 3));
+      }
+    }
+  }
   /// Bit index of the edge between vertices a and b of triangle t.
   int EdgeBit(std::uint32_t t, std::uint32_t a, std::uint32_t b) const;
   const double* Position(std::uint32_t v) const { return &P[3 * std::size_t(v)]; }
@@ -602,14 +614,7 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
   }
 
   ++StampV;
-  for (std::uint32_t c = FirstCorner[v]; c != None; c = Link[c])
-  {
-    const std::uint32_t t = c / 3;
-    if (TriangleRemoved[t])
-    {
-      continue;
-    }
-    const int k = int(c % 3);
+  ForEachCorner(v, [&](std::uint32_t t, int k) {
     for (std::uint32_t x : { Indices[3 * t + std::uint32_t(NextCorner(k))], Indices[3 * t + std::uint32_t(PrevCorner(k))] })
     {
       if (MarkV[x] != StampV)
@@ -619,7 +624,7 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
       }
       ++CountV[x];
     }
-  }
+  });
   ++StampU;
   bool movesPocket = false;
   for (std::uint32_t c : Fan)
@@ -770,14 +775,7 @@ void Simplifier::Evaluate(std::uint32_t u, bool checkLegal)
 void Simplifier::NoteRegionsAround(std::uint32_t v)
 {
   ++StampV;
-  for (std::uint32_t c = FirstCorner[v]; c != None; c = Link[c])
-  {
-    const std::uint32_t t = c / 3;
-    if (TriangleRemoved[t])
-    {
-      continue;
-    }
-    const int k = int(c % 3);
+  ForEachCorner(v, [&](std::uint32_t t, int k) {
     const std::uint32_t before = Indices[3 * t + std::uint32_t(PrevCorner(k))];
     const std::uint32_t after = Indices[3 * t + std::uint32_t(NextCorner(k))];
     for (std::uint32_t x : { before, after })
@@ -791,7 +789,7 @@ void Simplifier::NoteRegionsAround(std::uint32_t v)
     }
     RegionFollowing[before] = TriangleRegion[t];
     RegionPreceding[after] = TriangleRegion[t];
-  }
+  });
 }
 
 void Simplifier::Offer(std::uint32_t x, std::uint32_t v)
