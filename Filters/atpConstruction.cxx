@@ -156,6 +156,13 @@ private:
     return const_cast<NodeResult&>(std::as_const(*this).Result(n));
   }
 
+  /// The scratch files grow as patches and node records are stored: keeps their largest total.
+  void NoteScratchPeak()
+  {
+    Stats.PeakScratchBytes =
+      std::max(Stats.PeakScratchBytes, EncodedEnd + Intermediate.PeakBytes() + NodeSpillEnd);
+  }
+
   void ReportProgress(std::size_t nodesDone)
   {
     Done += nodesDone;
@@ -184,8 +191,7 @@ private:
     }
     Stats.StoredTriangles += r.Triangles;
     Stats.PatchBytes += made.Encoded.size();
-    Stats.PeakScratchBytes =
-      std::max(Stats.PeakScratchBytes, EncodedEnd + Intermediate.PeakBytes() + NodeSpillEnd);
+    NoteScratchPeak();
   }
 
   /// Leaves keep the input at full resolution: their bucket, welded into an indexed patch.
@@ -346,8 +352,7 @@ private:
         records.clear();
       }
     }
-    Stats.PeakScratchBytes =
-      std::max(Stats.PeakScratchBytes, EncodedEnd + Intermediate.PeakBytes() + NodeSpillEnd);
+    NoteScratchPeak();
   }
 
   void Write(const std::string& outputPath)
