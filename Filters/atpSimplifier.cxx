@@ -180,6 +180,7 @@ private:
   std::size_t RecordSize = 0;
   std::vector<double> Records;
   std::vector<std::uint32_t> Into; // per removed vertex: the vertex it collapsed onto
+  std::vector<std::uint32_t> CollapseOrder; // the removed vertices, first collapsed first
   std::vector<VertexKind> Kind;
   std::vector<Candidate> Best; // per vertex: its queued collapse
   std::vector<std::uint32_t> Version;
@@ -192,7 +193,6 @@ private:
   std::vector<std::uint32_t> Deferred;
   bool Relaxed = false;
   bool Heaped = false; ///< the first evaluations are heaped all at once, in linear time
-  std::size_t Collapses = 0;
 
   // Scratch, reused by every collapse: stamps make clearing unnecessary.
   std::vector<std::uint32_t> Fan;
@@ -938,8 +938,8 @@ void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
   Best[u] = Candidate();
 
   Into[u] = v;
+  CollapseOrder.push_back(u);
   Quadric::Add(Record(v), Record(u), RecordSize);
-  ++Collapses;
 }
 
 SimplifyResult Simplifier::Run()
@@ -1063,7 +1063,7 @@ SimplifyResult Simplifier::Run()
 
   SimplifyResult result;
   result.Error = Deviation();
-  result.Collapses = Collapses;
+  result.Collapses = CollapseOrder.size();
   result.QuotasMet = Excess == 0;
   std::vector<std::vector<std::uint32_t>> byRegion(static_cast<std::size_t>(RegionCount));
   for (std::uint32_t t = 0; t < TriangleCount; ++t)
@@ -1141,6 +1141,10 @@ double DistanceToTriangle2(const double* p, const double* a, const double* b, co
 // then, unless its closest point is interior to a face, walks to a corner of its closest triangle
 // while that corner's fan comes closer. Any set of output triangles gives an upper bound of the
 // distance to the whole output surface; the walk makes it (nearly always) the exact distance.
+// Only the largest distance is wanted: a vertex is done as soon as one triangle lies within the
+// largest found so far (its own distance cannot exceed that), and the last collapses, the costly
+// ones, are measured first so that the bound is large early. The result is the same as measuring
+// every vertex in full.
 double Simplifier::Deviation()
 {
   const auto at = [&](std::uint32_t v, double* p) {
@@ -1150,8 +1154,9 @@ double Simplifier::Deviation()
     }
   };
   double p[3];
+  double max2 = 0;
   // The squared distance from p to the fan of v, its closest triangle and whether the closest
-  // point is interior to it.
+  // point is interior to it; or, as soon as one triangle is within max2, that triangle's.
   bool inside = false;
   const auto fanDistance2 = [&](std::uint32_t v, std::uint32_t& closest) {
     GatherFan(v, Fan);
@@ -1172,26 +1177,26 @@ double Simplifier::Deviation()
         closest = t;
         inside = interior;
       }
+      if (d2 <= max2)
+      {
+        break;
+      }
     }
     return nearest2;
   };
-  double max2 = 0;
-  for (std::uint32_t u = 0; u < VertexCount; ++u)
+  for (auto removed = CollapseOrder.rbegin(); removed != CollapseOrder.rend(); ++removed)
   {
-    if (Kind[u] != VertexKind::Removed)
-    {
-      continue;
-    }
+    const std::uint32_t u = *removed;
     std::uint32_t v = Into[u];
     while (Kind[v] == VertexKind::Removed)
     {
       v = Into[v];
     }
-    Into[u] = v; // later vertices that ended here find it at once
+    Into[u] = v; // earlier collapses that ended here find it at once
     at(u, p);
     std::uint32_t closest = None;
     double nearest2 = fanDistance2(v, closest);
-    for (bool moved = closest != None; moved && nearest2 > 0 && !inside;)
+    for (bool moved = closest != None; moved && nearest2 > max2 && !inside;)
     {
       moved = false;
       const std::uint32_t* tri = &Indices[3 * std::size_t(closest)];
