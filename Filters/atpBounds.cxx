@@ -50,9 +50,14 @@ double Length(const double v[3])
   return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
 }
 
+double Dot(const double a[3], const double b[3])
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
 double AngleBetweenUnit(const double a[3], const double b[3])
 {
-  return std::acos(std::clamp(a[0] * b[0] + a[1] * b[1] + a[2] * b[2], -1.0, 1.0));
+  return std::acos(std::clamp(Dot(a, b), -1.0, 1.0));
 }
 
 /// The cone around `axis` (not necessarily unit; zero means no common direction) that holds
@@ -71,11 +76,22 @@ NormalCone ConeAround(double axis[3], const std::vector<std::array<double, 4>>& 
   {
     cone.Axis[a] = axis[a] / length;
   }
+  // Face normals have no width: the widest of them is the one of least cosine, so one arc
+  // cosine serves them all (a patch has thousands).
   double halfAngle = 0;
+  double leastCos = 1;
   for (const auto& d : directions)
   {
-    halfAngle = std::max(halfAngle, AngleBetweenUnit(cone.Axis, d.data()) + d[3]);
+    if (d[3] == 0)
+    {
+      leastCos = std::min(leastCos, Dot(cone.Axis, d.data()));
+    }
+    else
+    {
+      halfAngle = std::max(halfAngle, AngleBetweenUnit(cone.Axis, d.data()) + d[3]);
+    }
   }
+  halfAngle = std::max(halfAngle, std::acos(std::clamp(leastCos, -1.0, 1.0)));
   cone.Cos = halfAngle >= M_PI ? -1 : std::cos(halfAngle);
   return cone;
 }
