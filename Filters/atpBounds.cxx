@@ -55,9 +55,10 @@ double Dot(const double a[3], const double b[3])
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-double AngleBetweenUnit(const double a[3], const double b[3])
+/// The angle whose cosine is `cosine`, which rounding may have taken just past -1 or 1.
+double AngleOf(double cosine)
 {
-  return std::acos(std::clamp(Dot(a, b), -1.0, 1.0));
+  return std::acos(std::clamp(cosine, -1.0, 1.0));
 }
 
 /// The cone around `axis` (not necessarily unit; zero means no common direction) that holds
@@ -88,10 +89,10 @@ NormalCone ConeAround(double axis[3], const std::vector<std::array<double, 4>>& 
     }
     else
     {
-      halfAngle = std::max(halfAngle, AngleBetweenUnit(cone.Axis, d.data()) + d[3]);
+      halfAngle = std::max(halfAngle, AngleOf(Dot(cone.Axis, d.data())) + d[3]);
     }
   }
-  halfAngle = std::max(halfAngle, std::acos(std::clamp(leastCos, -1.0, 1.0)));
+  halfAngle = std::max(halfAngle, AngleOf(leastCos));
   cone.Cos = halfAngle >= M_PI ? -1 : std::cos(halfAngle);
   return cone;
 }
@@ -205,7 +206,7 @@ NormalCone EnclosingCone(const std::vector<NormalCone>& cones)
       all.Cos = -1;
       return all;
     }
-    directions.push_back({ { c.Axis[0], c.Axis[1], c.Axis[2], std::acos(std::clamp(c.Cos, -1.0, 1.0)) } });
+    directions.push_back({ { c.Axis[0], c.Axis[1], c.Axis[2], AngleOf(c.Cos) } });
     for (int a = 0; a < 3; ++a)
     {
       sum[a] += c.Axis[a];
