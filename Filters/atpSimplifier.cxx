@@ -1,5 +1,6 @@
 #include "atpSimplifier.h"
 
+#include "atpCollapseQueues.h"
 #include "atpQuadric.h"
 
 #include <algorithm>
@@ -29,22 +30,6 @@ enum class VertexKind : std::uint8_t
   Boundary, ///< on the original boundary: collapses only along it
   Locked,   ///< diamond-external boundary, non-manifold, or unused: never moves
   Removed   ///< collapsed
-};
-
-struct HeapEntry
-{
-  double Cost;
-  std::uint32_t Vertex;
-  std::uint32_t Version; ///< stale when the vertex was evaluated again since
-};
-
-/// std heap functions build a max-heap: "after" puts the cheapest first, ties by vertex.
-struct HeapAfter
-{
-  bool operator()(const HeapEntry& a, const HeapEntry& b) const
-  {
-    return a.Cost > b.Cost || (a.Cost == b.Cost && a.Vertex > b.Vertex);
-  }
 };
 
 struct Candidate
@@ -92,6 +77,18 @@ inline double Dot(const double* a, const double* b)
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+/// A triangle of the working mesh with all that a walk around a vertex reads from it, so that
+/// each step of the walk touches one record (half a cache line): its corners, per corner the
+/// next corner of that vertex's fan, its region and open-edge bits, and whether it is gone.
+struct alignas(32) Face
+{
+  std::uint32_t V[3];
+  std::uint32_t Next[3] = { None, None, None };
+  int Region = 0;
+  std::uint8_t Bits = 0; ///< BoundaryEdges: bit k for the edge from corner k to k + 1
+  std::uint8_t Removed = 0;
+};
+
 /// One call's state. Vertex fans are singly linked lists of corners (corner = 3 * triangle + k)
 /// that drop removed triangles lazily as they are walked; a collapse splices the moving vertex's
 /// list into the target's, so nothing is allocated per collapse.
@@ -132,15 +129,15 @@ private:
   bool OverQuota(int r) const { return Counts[std::size_t(r)] > std::int64_t(Quotas[std::size_t(r)]); }
   bool Contains(std::uint32_t t, std::uint32_t v) const
   {
-    return Indices[3 * t] == v || Indices[3 * t + 1] == v || Indices[3 * t + 2] == v;
+    return Faces[t].V[0] == v || Faces[t].V[1] == v || Faces[t].V[2] == v;
   }
   /// Calls visit(t, k) for every live triangle t around v, v being its corner k.
   template <typename Visit>
   void ForEachCorner(std::uint32_t v, Visit visit) const
   {
-    for (std::uint32_t c = FirstCorner[v]; c != None; c = Link[c])
+    for (std::uint32_t c = FirstCorner[v]; c != None; c = Faces[c / 3].Next[c % 3])
     {
-      if (!TriangleRemoved[c / 3])
+      if (!Faces[c / 3].Removed)
       {
         visit(c / 3, int(c % 3));
       }
@@ -162,12 +159,8 @@ private:
   const std::size_t VertexCount;
   const std::size_t TriangleCount;
 
-  std::vector<std::uint32_t> Indices;   // working copy
-  std::vector<std::uint8_t> Bits;       // working BoundaryEdges
-  std::vector<std::uint8_t> TriangleRemoved;
-  std::vector<int> TriangleRegion;
-  std::vector<std::uint32_t> FirstCorner; // per vertex
-  std::vector<std::uint32_t> Link;        // per corner: the next corner of the same vertex
+  std::vector<Face> Faces;                // the working mesh
+  std::vector<std::uint32_t> FirstCorner; // per vertex: the head of its fan
 
   double Origin[3] = { 0, 0, 0 };
   double Scale = 1; // bounding box diagonal: positions are normalized by it
@@ -183,16 +176,13 @@ private:
   std::vector<std::uint32_t> CollapseOrder; // the removed vertices, first collapsed first
   std::vector<VertexKind> Kind;
   std::vector<Candidate> Best; // per vertex: its queued collapse
-  std::vector<std::uint32_t> Version;
-
-  std::vector<std::vector<HeapEntry>> Queues; // per region
+  CollapseQueues Waiting;       // per region: the vertices whose collapse removes its triangles
   std::vector<std::int64_t> Counts;           // live triangles per region
   std::int64_t Excess = 0;                    // sum over regions of max(0, count - quota)
   /// Collapses that would also remove triangles of regions within their quotas wait here, and
   /// are taken only when the over-quota regions have nothing else left (Relaxed).
   std::vector<std::uint32_t> Deferred;
   bool Relaxed = false;
-  bool Heaped = false; ///< the first evaluations are heaped all at once, in linear time
 
   // Scratch, reused by every collapse: stamps make clearing unnecessary.
   std::vector<std::uint32_t> Fan;
@@ -214,15 +204,18 @@ Simplifier::Simplifier(const PatchMesh& mesh, int regionCount, const RegionFunct
   , Quotas(quotas)
   , VertexCount(mesh.VertexCount())
   , TriangleCount(mesh.TriangleCount())
+  , Waiting(std::size_t(std::max(regionCount, 1)), VertexCount)
 {
   if (regionCount < 1 || quotas.size() != std::size_t(regionCount))
   {
     throw std::invalid_argument("Simplify: need one quota per region");
   }
-  Indices = mesh.Indices;
-  Bits.assign(TriangleCount, 0);
-  std::copy_n(mesh.BoundaryEdges.begin(), std::min(mesh.BoundaryEdges.size(), TriangleCount),
-    Bits.begin());
+  Faces.resize(TriangleCount);
+  for (std::size_t t = 0; t < TriangleCount; ++t)
+  {
+    std::copy_n(&mesh.Indices[3 * t], 3, Faces[t].V);
+    Faces[t].Bits = t < mesh.BoundaryEdges.size() ? mesh.BoundaryEdges[t] : 0;
+  }
 
   double lo[3] = { 1e300, 1e300, 1e300 };
   double hi[3] = { -1e300, -1e300, -1e300 };
@@ -270,7 +263,6 @@ Simplifier::Simplifier(const PatchMesh& mesh, int regionCount, const RegionFunct
 
   Kind.assign(VertexCount, VertexKind::Locked);
   Best.assign(VertexCount, Candidate());
-  Version.assign(VertexCount, 0);
   Into.assign(VertexCount, None);
   MarkU.assign(VertexCount, 0);
   CountU.assign(VertexCount, 0);
@@ -282,7 +274,6 @@ Simplifier::Simplifier(const PatchMesh& mesh, int regionCount, const RegionFunct
     RegionFollowing.assign(VertexCount, 0);
     RegionPreceding.assign(VertexCount, 0);
   }
-  Queues.resize(std::size_t(regionCount));
   Counts.assign(std::size_t(regionCount), 0);
   Delta.assign(std::size_t(regionCount), 0);
 }
@@ -299,7 +290,7 @@ int Simplifier::RegionOf(const double point[3]) const
 
 int Simplifier::EdgeBit(std::uint32_t t, std::uint32_t a, std::uint32_t b) const
 {
-  const std::uint32_t* tri = &Indices[3 * std::size_t(t)];
+  const std::uint32_t* tri = Faces[t].V;
   const int ka = tri[0] == a ? 0 : (tri[1] == a ? 1 : 2);
   return tri[NextCorner(ka)] == b ? ka : PrevCorner(ka);
 }
@@ -307,29 +298,26 @@ int Simplifier::EdgeBit(std::uint32_t t, std::uint32_t a, std::uint32_t b) const
 void Simplifier::LinkCorners()
 {
   // Triangles with a repeated corner are degenerate: they take no part.
-  TriangleRemoved.assign(TriangleCount, 0);
   FirstCorner.assign(VertexCount, None);
-  Link.assign(3 * TriangleCount, None);
   for (std::size_t c = 3 * TriangleCount; c-- > 0;)
   {
     const std::size_t t = c / 3;
-    const std::uint32_t* tri = &Indices[3 * t];
+    const std::uint32_t* tri = Faces[t].V;
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0])
     {
-      TriangleRemoved[t] = 1;
+      Faces[t].Removed = 1;
       continue;
     }
-    Link[c] = FirstCorner[Indices[c]];
-    FirstCorner[Indices[c]] = std::uint32_t(c);
+    Faces[c / 3].Next[c % 3] = FirstCorner[Faces[c / 3].V[c % 3]];
+    FirstCorner[Faces[c / 3].V[c % 3]] = std::uint32_t(c);
   }
 }
 
 void Simplifier::AssignRegions()
 {
-  TriangleRegion.assign(TriangleCount, 0);
   for (std::size_t t = 0; t < TriangleCount; ++t)
   {
-    if (TriangleRemoved[t])
+    if (Faces[t].Removed)
     {
       continue;
     }
@@ -343,15 +331,15 @@ void Simplifier::AssignRegions()
     {
       for (int a = 0; a < 3; ++a)
       {
-        centroid[a] += double(Mesh.Positions[3 * std::size_t(Indices[3 * t + std::size_t(k)]) + std::size_t(a)]);
+        centroid[a] += double(Mesh.Positions[3 * std::size_t(Faces[t].V[k]) + std::size_t(a)]);
       }
     }
     for (double& x : centroid)
     {
       x /= 3;
     }
-    TriangleRegion[t] = RegionOf(centroid);
-    ++Counts[std::size_t(TriangleRegion[t])];
+    Faces[t].Region = RegionOf(centroid);
+    ++Counts[std::size_t(Faces[t].Region)];
   }
   for (int r = 0; r < RegionCount; ++r)
   {
@@ -366,13 +354,13 @@ void Simplifier::GatherFan(std::uint32_t u, std::vector<std::uint32_t>& fan)
   while (*link != None)
   {
     const std::uint32_t c = *link;
-    if (TriangleRemoved[c / 3])
+    if (Faces[c / 3].Removed)
     {
-      *link = Link[c];
+      *link = Faces[c / 3].Next[c % 3];
       continue;
     }
     fan.push_back(c);
-    link = &Link[c];
+    link = &Faces[c / 3].Next[c % 3];
   }
 }
 
@@ -401,8 +389,8 @@ void Simplifier::Classify(std::uint32_t u)
   {
     const std::uint32_t t = Fan[i] / 3;
     const int k = int(Fan[i] % 3);
-    const std::uint32_t x = Indices[3 * t + std::uint32_t(NextCorner(k))];
-    const std::uint32_t y = Indices[3 * t + std::uint32_t(PrevCorner(k))];
+    const std::uint32_t x = Faces[t].V[NextCorner(k)];
+    const std::uint32_t y = Faces[t].V[PrevCorner(k)];
     touch(x);
     touch(y);
     ++CountU[x];
@@ -416,27 +404,27 @@ void Simplifier::Classify(std::uint32_t u)
   {
     const std::uint32_t t = Fan[i] / 3;
     const int k = int(Fan[i] % 3);
-    const std::uint32_t x = Indices[3 * t + std::uint32_t(NextCorner(k))];
-    const std::uint32_t y = Indices[3 * t + std::uint32_t(PrevCorner(k))];
+    const std::uint32_t x = Faces[t].V[NextCorner(k)];
+    const std::uint32_t y = Faces[t].V[PrevCorner(k)];
     locked = locked || CountU[x] > 1 || CountV[x] > 1;
     if (CountV[x] == 0)
     {
       ++open;
       start = i;
-      locked = locked || !(Bits[t] & (1u << k));
+      locked = locked || !(Faces[t].Bits & (1u << k));
     }
     else
     {
-      Bits[t] &= std::uint8_t(~(1u << k));
+      Faces[t].Bits &= std::uint8_t(~(1u << k));
     }
     if (CountU[y] == 0)
     {
       ++open;
-      locked = locked || !(Bits[t] & (1u << PrevCorner(k)));
+      locked = locked || !(Faces[t].Bits & (1u << PrevCorner(k)));
     }
     else
     {
-      Bits[t] &= std::uint8_t(~(1u << PrevCorner(k)));
+      Faces[t].Bits &= std::uint8_t(~(1u << PrevCorner(k)));
     }
   }
   if (locked || (open != 0 && open != 2))
@@ -448,7 +436,7 @@ void Simplifier::Classify(std::uint32_t u)
   for (std::size_t i = start; visited <= Fan.size(); ++visited)
   {
     const std::uint32_t t = Fan[i] / 3;
-    const std::uint32_t y = Indices[3 * t + std::uint32_t(PrevCorner(int(Fan[i] % 3)))];
+    const std::uint32_t y = Faces[t].V[PrevCorner(int(Fan[i] % 3))];
     if (CountU[y] == 0 || SlotU[y] == start)
     {
       break;
@@ -469,11 +457,11 @@ void Simplifier::BuildQuadrics()
   std::vector<double> q(RecordSize);
   for (std::size_t t = 0; t < TriangleCount; ++t)
   {
-    if (TriangleRemoved[t])
+    if (Faces[t].Removed)
     {
       continue;
     }
-    const std::uint32_t* tri = &Indices[3 * t];
+    const std::uint32_t* tri = Faces[t].V;
     const double* p0 = Position(tri[0]);
     double e1[3], e2[3], n[3];
     Sub(Position(tri[1]), p0, e1);
@@ -524,7 +512,7 @@ void Simplifier::BuildQuadrics()
 
     for (int k = 0; k < 3; ++k)
     {
-      if (!(Bits[t] & (1u << k)))
+      if (!(Faces[t].Bits & (1u << k)))
       {
         continue;
       }
@@ -569,8 +557,8 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
   {
     const std::uint32_t t = c / 3;
     const int k = int(c % 3);
-    const std::uint32_t x = Indices[3 * t + std::uint32_t(NextCorner(k))];
-    const std::uint32_t y = Indices[3 * t + std::uint32_t(PrevCorner(k))];
+    const std::uint32_t x = Faces[t].V[NextCorner(k)];
+    const std::uint32_t y = Faces[t].V[PrevCorner(k)];
     if (x == v || y == v)
     {
       if (opposites == 2)
@@ -615,7 +603,7 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
 
   ++StampV;
   ForEachCorner(v, [&](std::uint32_t t, int k) {
-    for (std::uint32_t x : { Indices[3 * t + std::uint32_t(NextCorner(k))], Indices[3 * t + std::uint32_t(PrevCorner(k))] })
+    for (std::uint32_t x : { Faces[t].V[NextCorner(k)], Faces[t].V[PrevCorner(k)] })
     {
       if (MarkV[x] != StampV)
       {
@@ -631,8 +619,8 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
   {
     const std::uint32_t t = c / 3;
     const int k = int(c % 3);
-    const std::uint32_t x = Indices[3 * t + std::uint32_t(NextCorner(k))];
-    const std::uint32_t y = Indices[3 * t + std::uint32_t(PrevCorner(k))];
+    const std::uint32_t x = Faces[t].V[NextCorner(k)];
+    const std::uint32_t y = Faces[t].V[PrevCorner(k)];
     const bool moves = x != v && y != v;
     for (std::uint32_t z : { x, y })
     {
@@ -660,10 +648,10 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
   if (movesPocket)
   {
     // A moved triangle becomes (v, a, b) with a, b the opposite corners: it must not exist yet.
-    for (std::uint32_t c = FirstCorner[v]; c != None; c = Link[c])
+    for (std::uint32_t c = FirstCorner[v]; c != None; c = Faces[c / 3].Next[c % 3])
     {
       const std::uint32_t t = c / 3;
-      if (!TriangleRemoved[t] && !Contains(t, u) && Contains(t, opposite[0]) && Contains(t, opposite[1]))
+      if (!Faces[t].Removed && !Contains(t, u) && Contains(t, opposite[0]) && Contains(t, opposite[1]))
       {
         return false;
       }
@@ -687,14 +675,8 @@ Candidate Simplifier::Price(std::uint32_t u, std::uint32_t target, int regionA, 
 
 void Simplifier::Queue(std::uint32_t u, const Candidate& candidate)
 {
-  ++Version[u];
   Best[u] = candidate;
-  std::vector<HeapEntry>& queue = Queues[std::size_t(candidate.Region)];
-  queue.push_back({ candidate.Cost, u, Version[u] });
-  if (Heaped)
-  {
-    std::push_heap(queue.begin(), queue.end(), HeapAfter());
-  }
+  Waiting.Set(u, std::size_t(candidate.Region), candidate.Cost);
 }
 
 // Finds u's cheapest collapse, preferring those that remove triangles of regions over their
@@ -705,7 +687,6 @@ void Simplifier::Evaluate(std::uint32_t u, bool checkLegal)
   {
     return;
   }
-  ++Version[u];
   Best[u] = Candidate();
   GatherFan(u, Fan);
   // Without legality checks only the cheapest matters: no list to build.
@@ -730,15 +711,15 @@ void Simplifier::Evaluate(std::uint32_t u, bool checkLegal)
     for (std::size_t i = 0; RegionCount > 1 && i < Fan.size(); ++i)
     {
       const std::uint32_t t = Fan[i] / 3;
-      MarkU[Indices[3 * t + std::uint32_t(PrevCorner(int(Fan[i] % 3)))]] = StampU;
-      SlotU[Indices[3 * t + std::uint32_t(PrevCorner(int(Fan[i] % 3)))]] = t;
+      MarkU[Faces[t].V[PrevCorner(int(Fan[i] % 3))]] = StampU;
+      SlotU[Faces[t].V[PrevCorner(int(Fan[i] % 3))]] = t;
     }
     for (std::uint32_t c : Fan)
     {
       const std::uint32_t t = c / 3;
-      const std::uint32_t x = Indices[3 * t + std::uint32_t(NextCorner(int(c % 3)))];
-      const int other = MarkU[x] == StampU ? TriangleRegion[SlotU[x]] : TriangleRegion[t];
-      consider(x, TriangleRegion[t], other);
+      const std::uint32_t x = Faces[t].V[NextCorner(int(c % 3))];
+      const int other = MarkU[x] == StampU ? Faces[SlotU[x]].Region : Faces[t].Region;
+      consider(x, Faces[t].Region, other);
     }
   }
   else
@@ -747,13 +728,13 @@ void Simplifier::Evaluate(std::uint32_t u, bool checkLegal)
     {
       const std::uint32_t t = c / 3;
       const int k = int(c % 3);
-      if (Bits[t] & (1u << k))
+      if (Faces[t].Bits & (1u << k))
       {
-        consider(Indices[3 * t + std::uint32_t(NextCorner(k))], TriangleRegion[t], TriangleRegion[t]);
+        consider(Faces[t].V[NextCorner(k)], Faces[t].Region, Faces[t].Region);
       }
-      if (Bits[t] & (1u << PrevCorner(k)))
+      if (Faces[t].Bits & (1u << PrevCorner(k)))
       {
-        consider(Indices[3 * t + std::uint32_t(PrevCorner(k))], TriangleRegion[t], TriangleRegion[t]);
+        consider(Faces[t].V[PrevCorner(k)], Faces[t].Region, Faces[t].Region);
       }
     }
   }
@@ -770,14 +751,18 @@ void Simplifier::Evaluate(std::uint32_t u, bool checkLegal)
   {
     Queue(u, cheapest);
   }
+  else
+  {
+    Waiting.Remove(u);
+  }
 }
 
 void Simplifier::NoteRegionsAround(std::uint32_t v)
 {
   ++StampV;
   ForEachCorner(v, [&](std::uint32_t t, int k) {
-    const std::uint32_t before = Indices[3 * t + std::uint32_t(PrevCorner(k))];
-    const std::uint32_t after = Indices[3 * t + std::uint32_t(NextCorner(k))];
+    const std::uint32_t before = Faces[t].V[PrevCorner(k)];
+    const std::uint32_t after = Faces[t].V[NextCorner(k)];
     for (std::uint32_t x : { before, after })
     {
       if (MarkV[x] != StampV)
@@ -787,8 +772,8 @@ void Simplifier::NoteRegionsAround(std::uint32_t v)
         RegionPreceding[x] = 0;
       }
     }
-    RegionFollowing[before] = TriangleRegion[t];
-    RegionPreceding[after] = TriangleRegion[t];
+    RegionFollowing[before] = Faces[t].Region;
+    RegionPreceding[after] = Faces[t].Region;
   });
 }
 
@@ -825,7 +810,7 @@ std::int64_t Simplifier::ExcessChange(std::uint32_t u, std::uint32_t v)
     const std::uint32_t t = c / 3;
     if (Contains(t, v))
     {
-      change(TriangleRegion[t], -1);
+      change(Faces[t].Region, -1);
       MovedRegions.push_back(-1);
       continue;
     }
@@ -840,16 +825,16 @@ std::int64_t Simplifier::ExcessChange(std::uint32_t u, std::uint32_t v)
       double sum = double(pv[a]);
       for (int k = 0; k < 3; ++k)
       {
-        const std::uint32_t x = Indices[3 * t + std::uint32_t(k)];
+        const std::uint32_t x = Faces[t].V[k];
         sum += x == u ? 0.0 : double(Mesh.Positions[3 * std::size_t(x) + std::size_t(a)]);
       }
       centroid[a] = sum / 3;
     }
     const int r = RegionOf(centroid);
     MovedRegions.push_back(r);
-    if (r != TriangleRegion[t])
+    if (r != Faces[t].Region)
     {
-      change(TriangleRegion[t], -1);
+      change(Faces[t].Region, -1);
       change(r, +1);
     }
   }
@@ -868,8 +853,8 @@ std::int64_t Simplifier::ExcessChange(std::uint32_t u, std::uint32_t v)
 // was open, the survivor carries that edge's boundary bit.
 void Simplifier::FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, std::uint32_t w)
 {
-  const bool openVW = Bits[t] & (1u << EdgeBit(t, v, w));
-  const bool openWU = Bits[t] & (1u << EdgeBit(t, w, u));
+  const bool openVW = Faces[t].Bits & (1u << EdgeBit(t, v, w));
+  const bool openWU = Faces[t].Bits & (1u << EdgeBit(t, w, u));
   if (!openVW && !openWU)
   {
     return; // the usual interior case: nothing to carry
@@ -883,21 +868,21 @@ void Simplifier::FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, 
       acrossWU = s;
     }
   }
-  for (std::uint32_t c = FirstCorner[v]; c != None; c = Link[c])
+  for (std::uint32_t c = FirstCorner[v]; c != None; c = Faces[c / 3].Next[c % 3])
   {
     const std::uint32_t s = c / 3;
-    if (s != t && !TriangleRemoved[s] && !Contains(s, u) && Contains(s, w))
+    if (s != t && !Faces[s].Removed && !Contains(s, u) && Contains(s, w))
     {
       acrossVW = s;
     }
   }
   if (acrossWU != None && acrossVW == None && openVW)
   {
-    Bits[acrossWU] |= std::uint8_t(1u << EdgeBit(acrossWU, u, w));
+    Faces[acrossWU].Bits |= std::uint8_t(1u << EdgeBit(acrossWU, u, w));
   }
   if (acrossVW != None && acrossWU == None && openWU)
   {
-    Bits[acrossVW] |= std::uint8_t(1u << EdgeBit(acrossVW, v, w));
+    Faces[acrossVW].Bits |= std::uint8_t(1u << EdgeBit(acrossVW, v, w));
   }
 }
 
@@ -909,7 +894,7 @@ void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
     const std::uint32_t t = c / 3;
     if (Contains(t, v))
     {
-      const std::uint32_t* tri = &Indices[3 * t];
+      const std::uint32_t* tri = Faces[t].V;
       const std::uint32_t w = tri[0] != u && tri[0] != v ? tri[0] : (tri[1] != u && tri[1] != v ? tri[1] : tri[2]);
       FixOpenEdge(t, u, v, w);
     }
@@ -919,22 +904,21 @@ void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
   {
     const std::uint32_t c = Fan[i];
     const std::uint32_t t = c / 3;
-    --Counts[std::size_t(TriangleRegion[t])];
+    --Counts[std::size_t(Faces[t].Region)];
     if (MovedRegions[i] < 0)
     {
-      TriangleRemoved[t] = 1;
+      Faces[t].Removed = 1;
       continue;
     }
-    Indices[c] = v;
-    TriangleRegion[t] = MovedRegions[i];
+    Faces[c / 3].V[c % 3] = v;
+    Faces[t].Region = MovedRegions[i];
     ++Counts[std::size_t(MovedRegions[i])];
-    Link[c] = head;
+    Faces[c / 3].Next[c % 3] = head;
     head = c;
   }
   FirstCorner[v] = head;
   FirstCorner[u] = None;
   Kind[u] = VertexKind::Removed;
-  ++Version[u];
   Best[u] = Candidate();
 
   Into[u] = v;
@@ -958,11 +942,7 @@ SimplifyResult Simplifier::Run()
       Evaluate(v, false);
     }
   }
-  for (std::vector<HeapEntry>& queue : Queues)
-  {
-    std::make_heap(queue.begin(), queue.end(), HeapAfter());
-  }
-  Heaped = true;
+  Waiting.Order();
 
   while (Excess > 0)
   {
@@ -970,14 +950,9 @@ SimplifyResult Simplifier::Run()
     int best = -1;
     for (int r = 0; r < RegionCount; ++r)
     {
-      std::vector<HeapEntry>& queue = Queues[std::size_t(r)];
-      while (!queue.empty() && queue.front().Version != Version[queue.front().Vertex])
-      {
-        std::pop_heap(queue.begin(), queue.end(), HeapAfter());
-        queue.pop_back();
-      }
-      if (OverQuota(r) && !queue.empty() &&
-        (best < 0 || HeapAfter()(Queues[std::size_t(best)].front(), queue.front())))
+      if (OverQuota(r) && !Waiting.Empty(std::size_t(r)) &&
+        (best < 0 ||
+          CollapseQueues::Before(Waiting.Front(std::size_t(r)), Waiting.Front(std::size_t(best)))))
       {
         best = r;
       }
@@ -995,10 +970,8 @@ SimplifyResult Simplifier::Run()
       }
       continue;
     }
-    std::vector<HeapEntry>& queue = Queues[std::size_t(best)];
-    const std::uint32_t u = queue.front().Vertex;
-    std::pop_heap(queue.begin(), queue.end(), HeapAfter());
-    queue.pop_back();
+    const std::uint32_t u = Waiting.Front(std::size_t(best)).Vertex;
+    Waiting.Remove(u);
     const std::uint32_t v = Best[u].Target;
     GatherFan(u, Fan);
     if (!CanCollapse(u, v))
@@ -1017,7 +990,6 @@ SimplifyResult Simplifier::Run()
     {
       // It would only shift triangles between regions, or eat into a region that already
       // meets its quota (allowed only when nothing else is left): u waits for new neighbors.
-      ++Version[u];
       Best[u] = Candidate();
       if (change < 0)
       {
@@ -1034,7 +1006,7 @@ SimplifyResult Simplifier::Run()
       const std::uint32_t t = c / 3;
       for (int k = 0; k < 3; ++k)
       {
-        const std::uint32_t x = Indices[3 * t + std::uint32_t(k)];
+        const std::uint32_t x = Faces[t].V[k];
         if (x != u && MarkV[x] != StampV)
         {
           MarkV[x] = StampV;
@@ -1068,9 +1040,9 @@ SimplifyResult Simplifier::Run()
   std::vector<std::vector<std::uint32_t>> byRegion(static_cast<std::size_t>(RegionCount));
   for (std::uint32_t t = 0; t < TriangleCount; ++t)
   {
-    if (!TriangleRemoved[t])
+    if (!Faces[t].Removed)
     {
-      byRegion[std::size_t(TriangleRegion[t])].push_back(t);
+      byRegion[std::size_t(Faces[t].Region)].push_back(t);
     }
   }
   for (int r = 0; r < RegionCount; ++r)
@@ -1167,7 +1139,7 @@ double Simplifier::Deviation()
       double corners[3][3];
       for (int k = 0; k < 3; ++k)
       {
-        at(Indices[3 * t + std::uint32_t(k)], corners[k]);
+        at(Faces[t].V[k], corners[k]);
       }
       bool interior = false;
       const double d2 = DistanceToTriangle2(p, corners[0], corners[1], corners[2], interior);
@@ -1199,7 +1171,7 @@ double Simplifier::Deviation()
     for (bool moved = closest != None; moved && nearest2 > max2 && !inside;)
     {
       moved = false;
-      const std::uint32_t* tri = &Indices[3 * std::size_t(closest)];
+      const std::uint32_t* tri = Faces[closest].V;
       const std::uint32_t corners[3] = { tri[0], tri[1], tri[2] };
       for (std::uint32_t x : corners)
       {
@@ -1231,7 +1203,7 @@ PatchMesh Simplifier::Extract(const std::vector<std::uint32_t>& triangles)
   {
     for (int k = 0; k < 3; ++k)
     {
-      const std::uint32_t v = Indices[3 * t + std::uint32_t(k)];
+      const std::uint32_t v = Faces[t].V[k];
       if (MarkU[v] != StampU)
       {
         MarkU[v] = StampU;
@@ -1248,7 +1220,7 @@ PatchMesh Simplifier::Extract(const std::vector<std::uint32_t>& triangles)
       }
       out.Indices.push_back(SlotU[v]);
     }
-    out.BoundaryEdges.push_back(Bits[t]);
+    out.BoundaryEdges.push_back(Faces[t].Bits);
   }
   return out;
 }

@@ -1,5 +1,6 @@
-// The constrained simplifier and the patch merge: locked and original boundaries, topology,
-// quotas, triangle quality, exact vertices, determinism, error.
+// The constrained simplifier, its collapse queues and the patch merge: locked and original
+// boundaries, topology, quotas, triangle quality, exact vertices, determinism, error.
+#include "atpCollapseQueues.h"
 #include "atpMergePatches.h"
 #include "atpSimplifier.h"
 
@@ -10,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <random>
 #include <set>
 #include <thread>
 
@@ -570,4 +572,84 @@ TEST(Simplifier, EmptyInput)
   EXPECT_EQ(result.Collapses, 0u);
   EXPECT_EQ(TriangleTotal(result), 0u);
   EXPECT_EQ(MergePatches({}).VertexCount(), 0u);
+}
+
+// Random keys set, changed, moved between queues and removed, checked against ordered sets
+// after every step: each queue's front is its least (cost, vertex), every vertex in one queue.
+TEST(CollapseQueues, FrontsFollowChangingKeys)
+{
+  constexpr std::size_t QueueCount = 3, VertexCount = 200;
+  CollapseQueues queues(QueueCount, VertexCount);
+  std::vector<std::set<std::pair<double, std::uint32_t>>> expected(QueueCount);
+  std::vector<int> queueOf(VertexCount, -1);
+  std::vector<double> costOf(VertexCount, 0);
+  std::mt19937 random(7);
+  // Few distinct costs, so that ties (broken by vertex) are common.
+  std::uniform_int_distribution<int> cost(0, 20), vertex(0, int(VertexCount) - 1),
+    queue(0, int(QueueCount) - 1), action(0, 3);
+  const auto set = [&](std::uint32_t v, int q, double c) {
+    if (queueOf[std::size_t(v)] >= 0)
+    {
+      expected[std::size_t(queueOf[v])].erase({ costOf[v], v });
+    }
+    queues.Set(v, std::size_t(q), c);
+    expected[std::size_t(q)].insert({ c, v });
+    queueOf[v] = q;
+    costOf[v] = c;
+  };
+  // Before Order(): appended only, then heaped at once.
+  for (std::uint32_t v = 0; v < VertexCount; v += 2)
+  {
+    set(v, queue(random), cost(random));
+  }
+  set(4, 1, 0.5); // a second key before ordering replaces the first
+  queues.Order();
+  for (int step = 0; step < 20000; ++step)
+  {
+    const std::uint32_t v = std::uint32_t(vertex(random));
+    const int a = action(random);
+    if (a == 0 && queueOf[v] >= 0)
+    {
+      expected[std::size_t(queueOf[v])].erase({ costOf[v], v });
+      queues.Remove(v);
+      queueOf[v] = -1;
+    }
+    else if (a == 1 && queueOf[v] >= 0)
+    {
+      set(v, queueOf[v], cost(random)); // the same queue, a new key
+    }
+    else if (a == 2 && !expected[0].empty())
+    {
+      const std::uint32_t front = queues.Front(0).Vertex; // pop
+      expected[0].erase({ costOf[front], front });
+      queues.Remove(front);
+      queueOf[front] = -1;
+    }
+    else
+    {
+      set(v, queue(random), cost(random));
+    }
+    for (std::size_t q = 0; q < QueueCount; ++q)
+    {
+      ASSERT_EQ(queues.Empty(q), expected[q].empty()) << "step " << step;
+      if (!expected[q].empty())
+      {
+        ASSERT_EQ(queues.Front(q).Vertex, expected[q].begin()->second) << "step " << step;
+        ASSERT_EQ(queues.Front(q).Cost, expected[q].begin()->first) << "step " << step;
+      }
+    }
+    ASSERT_EQ(queues.Queued(v), queueOf[v] >= 0);
+  }
+  // Popped to the end, each queue gives its keys in order: a heap broken below its front shows.
+  for (std::size_t q = 0; q < QueueCount; ++q)
+  {
+    for (const auto& [c, v] : expected[q])
+    {
+      ASSERT_FALSE(queues.Empty(q));
+      ASSERT_EQ(queues.Front(q).Vertex, v);
+      ASSERT_EQ(queues.Front(q).Cost, c);
+      queues.Remove(v);
+    }
+    EXPECT_TRUE(queues.Empty(q));
+  }
 }
