@@ -59,20 +59,30 @@ MemberLocator::MemberLocator(const std::vector<Tetra>& members, const LatticeFra
   }
 }
 
-int MemberLocator::MemberOf(const double p[3]) const
+double MemberLocator::Inside(std::size_t m, const double q[3]) const
+{
+  double inside = INFINITY;
+  for (const auto& row : Members[m].Rows)
+  {
+    inside = std::min(inside, row[0] * q[0] + row[1] * q[1] + row[2] * q[2] + row[3]);
+  }
+  return inside;
+}
+
+int MemberLocator::MemberOf(const double p[3], int likely) const
 {
   const double scale = Frame.Scale();
   const double q[3] = { (p[0] - Frame.Origin()[0]) * scale, (p[1] - Frame.Origin()[1]) * scale,
     (p[2] - Frame.Origin()[2]) * scale };
+  if (likely >= 0 && std::size_t(likely) < Members.size() && Inside(std::size_t(likely), q) > ClearlyInside)
+  {
+    return likely;
+  }
   int best = 0;
   double bestInside = -INFINITY;
   for (std::size_t m = 0; m < Members.size(); ++m)
   {
-    double inside = INFINITY;
-    for (const auto& row : Members[m].Rows)
-    {
-      inside = std::min(inside, row[0] * q[0] + row[1] * q[1] + row[2] * q[2] + row[3]);
-    }
+    const double inside = Inside(m, q);
     // Well inside one member (rounding is about 1e-13 here): no other can beat it.
     if (inside > ClearlyInside)
     {

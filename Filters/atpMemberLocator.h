@@ -18,8 +18,9 @@ public:
 
   /// The member holding p (world coordinates). A point on a shared face goes to the lower
   /// index; a point outside the diamond (a simplified triangle's centroid may leave it) to the
-  /// member it is least outside of.
-  int MemberOf(const double p[3]) const;
+  /// member it is least outside of. `likely` only saves time: the member tried first, whose
+  /// answer stands when p is well inside it (no other member can then hold p).
+  int MemberOf(const double p[3], int likely = 0) const;
 
 private:
   /// Per member: barycentric coordinates as an affine map of the lattice point.
@@ -27,6 +28,9 @@ private:
   {
     std::array<std::array<double, 4>, 4> Rows;
   };
+  /// The least barycentric coordinate of lattice point q in member m: > 0 inside it.
+  double Inside(std::size_t m, const double q[3]) const;
+
   std::vector<Barycentric> Members;
   LatticeFrame Frame;
 };

@@ -111,7 +111,7 @@ PatchJobResult SimplifyDiamond(const PatchJobContext& context, PatchJob& job)
   job.Children.clear(); // one copy of the diamond in memory while it simplifies
   const MemberLocator locator(job.Members, context.Frame);
   SimplifyResult simplified = Simplify(merged, int(job.Members.size()),
-    [&locator](const double p[3]) { return locator.MemberOf(p); }, quotas);
+    [&locator](const double p[3], int likely) { return locator.MemberOf(p, likely); }, quotas);
   // The merged input was already off the original by up to its children's error; storing
   // the interior on a coarser grid adds its rounding.
   const PatchPrecision precision = PrecisionFor(context.Grid, simplified.Error + job.ChildError);

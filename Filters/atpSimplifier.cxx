@@ -125,7 +125,7 @@ private:
   std::int64_t ExcessChange(std::uint32_t u, std::uint32_t v);
   void Collapse(std::uint32_t u, std::uint32_t v);
   void FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, std::uint32_t w);
-  int RegionOf(const double point[3]) const;
+  int RegionOf(const double point[3], int likely) const;
   bool OverQuota(int r) const { return Counts[std::size_t(r)] > std::int64_t(Quotas[std::size_t(r)]); }
   bool Contains(std::uint32_t t, std::uint32_t v) const
   {
@@ -278,9 +278,9 @@ Simplifier::Simplifier(const PatchMesh& mesh, int regionCount, const RegionFunct
   Delta.assign(std::size_t(regionCount), 0);
 }
 
-int Simplifier::RegionOf(const double point[3]) const
+int Simplifier::RegionOf(const double point[3], int likely) const
 {
-  const int r = RegionFn(point);
+  const int r = RegionFn(point, likely);
   if (r < 0 || r >= RegionCount)
   {
     throw std::invalid_argument("Simplify: the region function returned a region out of range");
@@ -338,7 +338,8 @@ void Simplifier::AssignRegions()
     {
       x /= 3;
     }
-    Faces[t].Region = RegionOf(centroid);
+    // Triangles come patch by patch: mostly in the previous one's region.
+    Faces[t].Region = RegionOf(centroid, t > 0 ? Faces[t - 1].Region : 0);
     ++Counts[std::size_t(Faces[t].Region)];
   }
   for (int r = 0; r < RegionCount; ++r)
@@ -830,7 +831,7 @@ std::int64_t Simplifier::ExcessChange(std::uint32_t u, std::uint32_t v)
       }
       centroid[a] = sum / 3;
     }
-    const int r = RegionOf(centroid);
+    const int r = RegionOf(centroid, Faces[t].Region);
     MovedRegions.push_back(r);
     if (r != Faces[t].Region)
     {

@@ -16,8 +16,10 @@
 namespace atp
 {
 
-/// The region (0..regionCount-1) of a triangle, from its centroid in input coordinates.
-using RegionFunction = std::function<int(const double point[3])>;
+/// The region (0..regionCount-1) of a triangle, from its centroid in input coordinates. `likely`
+/// is a region in range that the point probably lies in (the triangle's region before a
+/// collapse moved it, or the previous triangle's): a function that searches may try it first.
+using RegionFunction = std::function<int(const double point[3], int likely)>;
 
 struct SimplifyOptions
 {

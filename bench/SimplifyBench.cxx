@@ -452,7 +452,7 @@ int main(int argc, char** argv)
       }
       SimplifyResult result;
       rows[variant].Seconds = Time([&] {
-        result = Simplify(chunk, 1, [](const double*) { return 0; }, { quota }, options);
+        result = Simplify(chunk, 1, [](const double*, int) { return 0; }, { quota }, options);
       });
       const std::vector<std::uint32_t> out = ToChunkIndices(chunk, result);
       rows[variant].Out = out.size() / 3;

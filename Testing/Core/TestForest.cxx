@@ -1,6 +1,7 @@
 // Conformity of diamond refinement, proven by an exact face-matching check and by TetGen, and
-// the same checks rejecting cuts that break a diamond.
+// the same checks rejecting cuts that break a diamond; locating points in a diamond's members.
 #include "ConformityCheck.h"
+#include "atpMemberLocator.h"
 #include "atpTetraForest.h"
 
 #include <gtest/gtest.h>
@@ -280,4 +281,97 @@ TEST(ConformityCheck, RejectsAMissingTetrahedron)
   auto tets = LeafGeometry(RandomRefinement(4, 30));
   tets.erase(tets.begin() + 3);
   EXPECT_NE(FaceMatchingProblem(tets), "");
+}
+
+// The member a point is given to does not depend on the member tried first: points well inside
+// a member, on the faces between members, and around the diamond (outside it too).
+TEST(MemberLocator, AnswerDoesNotDependOnTheLikelyMember)
+{
+  const TetraForest forest = RandomRefinement(11, 60);
+  const double boxMin[3] = { -2, 0, 1 }, boxMax[3] = { 3, 4, 2 };
+  const LatticeFrame frame(boxMin, boxMax);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int diamonds = 0, points = 0, facePoints = 0;
+  for (const auto leaf : forest.Leaves())
+  {
+    const std::vector<TetId> ids = DiamondMembers(forest[leaf].Id);
+    if (ids.size() < 2 || diamonds == 40)
+    {
+      continue;
+    }
+    ++diamonds;
+    std::vector<Tetra> members;
+    for (const TetId id : ids)
+    {
+      members.push_back(TetraOf(id));
+    }
+    const MemberLocator locator(members, frame);
+    const auto world = [&](const Tetra& t, const double b[4], double out[3]) {
+      double lattice[3] = { 0, 0, 0 };
+      for (int k = 0; k < 4; ++k)
+      {
+        for (int a = 0; a < 3; ++a)
+        {
+          lattice[a] += b[k] * t.V[std::size_t(k)][std::size_t(a)];
+        }
+      }
+      for (int a = 0; a < 3; ++a)
+      {
+        out[a] = frame.Origin()[std::size_t(a)] + lattice[a] / frame.Scale();
+      }
+    };
+    for (std::size_t m = 0; m < members.size(); ++m)
+    {
+      for (int sample = 0; sample < 30; ++sample)
+      {
+        // Kind 0: well inside m; 1: on one of its faces; 2: stretched up to twice its size
+        // around its centroid, often outside the diamond.
+        const int kind = sample % 3;
+        double b[4], sum = 0;
+        for (double& x : b)
+        {
+          x = 0.05 + unit(rng);
+          sum += x;
+        }
+        for (double& x : b)
+        {
+          x /= sum;
+        }
+        if (kind == 1)
+        {
+          const int face = int(rng() % 4);
+          const double rest = 1 - b[face];
+          b[face] = 0;
+          for (double& x : b)
+          {
+            x /= rest;
+          }
+          ++facePoints;
+        }
+        if (kind == 2)
+        {
+          for (double& x : b)
+          {
+            x = 0.25 + 2 * (x - 0.25) * (1 + unit(rng));
+          }
+        }
+        double p[3];
+        world(members[m], b, p);
+        const int answer = locator.MemberOf(p);
+        if (kind == 0)
+        {
+          ASSERT_EQ(answer, int(m));
+        }
+        for (int likely = 0; likely < int(members.size()); ++likely)
+        {
+          ASSERT_EQ(locator.MemberOf(p, likely), answer) << "kind " << kind << ", likely " << likely;
+        }
+        ++points;
+      }
+    }
+  }
+  EXPECT_EQ(diamonds, 40);
+  EXPECT_GT(points, 2000);
+  EXPECT_GT(facePoints, 700);
 }

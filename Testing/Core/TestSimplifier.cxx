@@ -154,7 +154,7 @@ PatchMesh BumpyTorus(int nu, int nv)
 
 RegionFunction OneRegion()
 {
-  return [](const double*) { return 0; };
+  return [](const double*, int) { return 0; };
 }
 
 /// All regions of a result welded back into one mesh.
@@ -306,7 +306,7 @@ TEST(Simplifier, ClosedMeshStaysClosed)
 TEST(Simplifier, QuotasPerRegion)
 {
   const PatchMesh mesh = Grid(60, Bumps, true);
-  const RegionFunction side = [](const double p[3]) { return p[0] < 0.4 ? 0 : 1; };
+  const RegionFunction side = [](const double p[3], int) { return p[0] < 0.4 ? 0 : 1; };
   const std::vector<std::uint32_t> quotas{ 1000, 300 };
   const SimplifyResult result = Simplify(mesh, 2, side, quotas);
   EXPECT_TRUE(result.QuotasMet);
@@ -326,7 +326,7 @@ TEST(Simplifier, QuotasPerRegion)
           centroid[c] += region.Positions[3 * std::size_t(region.Indices[3 * t + std::size_t(k)]) + std::size_t(c)] / 3.0;
         }
       }
-      EXPECT_EQ(side(centroid), r);
+      EXPECT_EQ(side(centroid, 0), r);
     }
   }
 }
@@ -398,7 +398,7 @@ TEST(Simplifier, NoFlippedOrDegenerateTrianglesAndExactVertices)
 TEST(Simplifier, DeterministicAcrossRunsAndThreads)
 {
   const PatchMesh mesh = BumpyTorus(80, 40);
-  const RegionFunction regions = [](const double p[3]) { return p[0] < 0 ? 0 : (p[1] < 0 ? 1 : 2); };
+  const RegionFunction regions = [](const double p[3], int) { return p[0] < 0 ? 0 : (p[1] < 0 ? 1 : 2); };
   const std::vector<std::uint32_t> quotas{ 600, 500, 400 };
   const SimplifyResult first = Simplify(mesh, 3, regions, quotas);
   SimplifyResult concurrent[2];
