@@ -145,7 +145,8 @@ private:
   }
   /// Bit index of the edge between vertices a and b of triangle t.
   int EdgeBit(std::uint32_t t, std::uint32_t a, std::uint32_t b) const;
-  const double* Position(std::uint32_t v) const { return &P[3 * std::size_t(v)]; }
+  const double* Position(std::uint32_t v) const { return &Point[PointSize * v]; }
+  const double* AttributesOf(std::uint32_t v) const { return &Point[PointSize * v + 3]; }
   double* Record(std::uint32_t v) { return &Records[RecordSize * v]; }
   const double* Record(std::uint32_t v) const { return &Records[RecordSize * v]; }
   /// The largest distance from an input vertex to the output surface (see SimplifyResult).
@@ -166,8 +167,10 @@ private:
   double Scale = 1; // bounding box diagonal: positions are normalized by it
   int Attributes = 0;
   bool HasNormals = false;
-  std::vector<double> P;  // normalized positions
-  std::vector<double> S;  // weighted attributes, Attributes per vertex
+  /// Per vertex, together since a price reads both: the normalized position, then the
+  /// weighted attributes (PointSize doubles).
+  std::size_t PointSize = 3;
+  std::vector<double> Point;
   /// Per vertex, one record: the area-weighted plane + attribute-field quadric that orders the
   /// collapses (Quadric::Size(Attributes) doubles), then the total weight of its planes.
   std::size_t RecordSize = 0;
@@ -231,20 +234,19 @@ Simplifier::Simplifier(const PatchMesh& mesh, int regionCount, const RegionFunct
     Scale = diagonal > 0 ? diagonal : 1;
     std::copy(lo, lo + 3, Origin);
   }
-  P.resize(3 * VertexCount);
-  for (std::size_t i = 0; i < 3 * VertexCount; ++i)
-  {
-    P[i] = (mesh.Positions[i] - Origin[i % 3]) / Scale;
-  }
-
   HasNormals = mesh.Normals.size() == 3 * VertexCount;
   const bool normals = options.NormalWeight > 0 && HasNormals;
   const bool colors = options.ColorWeight > 0 && mesh.Colors.size() == 4 * VertexCount;
   Attributes = (normals ? 3 : 0) + (colors ? 4 : 0);
-  S.resize(std::size_t(Attributes) * VertexCount);
+  PointSize = 3 + std::size_t(Attributes);
+  Point.resize(PointSize * VertexCount);
   for (std::size_t v = 0; v < VertexCount; ++v)
   {
-    double* s = &S[std::size_t(Attributes) * v];
+    double* s = &Point[PointSize * v];
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      *s++ = (mesh.Positions[3 * v + a] - Origin[a]) / Scale;
+    }
     if (normals)
     {
       for (int j = 0; j < 3; ++j)
@@ -491,9 +493,9 @@ void Simplifier::BuildQuadrics()
       Cross(e2, n, c1);
       Cross(n, e1, c2);
       double g[3 * MaxAttributes], offset[MaxAttributes];
-      const double* s0 = &S[std::size_t(Attributes) * tri[0]];
-      const double* s1 = &S[std::size_t(Attributes) * tri[1]];
-      const double* s2 = &S[std::size_t(Attributes) * tri[2]];
+      const double* s0 = AttributesOf(tri[0]);
+      const double* s1 = AttributesOf(tri[1]);
+      const double* s2 = AttributesOf(tri[2]);
       for (int j = 0; j < Attributes; ++j)
       {
         const double d1 = (s1[j] - s0[j]) / length;
@@ -666,7 +668,7 @@ Candidate Simplifier::Price(std::uint32_t u, std::uint32_t target, int regionA, 
   const double* p = Position(target);
   Candidate candidate;
   const double* record = Record(u);
-  candidate.Cost = Quadric::Evaluate(record, Attributes, p, &S[std::size_t(Attributes) * target]) /
+  candidate.Cost = Quadric::Evaluate(record, Attributes, p, AttributesOf(target)) /
     std::max(record[RecordSize - 1], 1e-300);
   candidate.Target = target;
   candidate.Rank = 2 - int(OverQuota(regionA)) - int(OverQuota(regionB));
