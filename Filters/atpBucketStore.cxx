@@ -444,7 +444,30 @@ void BucketStore::Unpack(const unsigned char* page, std::vector<SoupTriangle>& o
   }
 }
 
-void BucketStore::Clear(BucketIndex bucketIndex)
+void BucketStore::StopAppending()
+{
+  FinishWrites();
+  if (Prefaulting.valid())
+  {
+    Prefaulting.wait(); // it must not map frames again after they are released
+  }
+  PrefaultedFrames = FramePage.size();
+  // Runs of free frames, one call each (the never used ones are one run at the end).
+  std::vector<std::size_t> free = FreeFrames;
+  std::sort(free.begin(), free.end());
+  for (std::size_t first = 0, last; first < free.size(); first = last)
+  {
+    for (last = first + 1; last < free.size() && free[last] == free[last - 1] + 1; ++last)
+    {
+    }
+    Pool.Release(free[first] * PageBytes, (last - first) * PageBytes);
+  }
+  // Rebuilt from its page if a frame is ever appended to again.
+  CornerTableMemory.Release(0, CornerTableMemory.Size());
+  std::fill(CornersIndexed.begin(), CornersIndexed.end(), 0);
+}
+
+void BucketStore::Empty(BucketIndex bucketIndex, bool releaseMemory)
 {
   if (bucketIndex >= Buckets.size())
   {
@@ -465,6 +488,10 @@ void BucketStore::Clear(BucketIndex bucketIndex)
         FrameDirty[frame] = 0;
         FrameReferenced[frame] = 0;
         FreeFrames.push_back(frame);
+        if (releaseMemory)
+        {
+          Pool.Release(frame * PageBytes, PageBytes);
+        }
       }
       // A frame being written is freed when its batch finishes.
       PageFrame[page] = NotResident;

@@ -56,7 +56,14 @@ public:
   /// Appends the bucket's triangles to `out`, in insertion order.
   void Read(BucketIndex bucket, std::vector<SoupTriangle>& out) const;
   /// Empties the bucket and recycles its pages.
-  void Clear(BucketIndex bucket);
+  void Clear(BucketIndex bucket) { Empty(bucket, false); }
+  /// After the last append: the pool's free frames and every corner lookup table go back to
+  /// the system, and from now on the frames of emptied buckets too (Discard). Construction
+  /// then holds only the pages still waiting to be read, fewer with every leaf.
+  /// Throws std::runtime_error when a pending write-back fails (disk full).
+  void StopAppending();
+  /// Empties the bucket for good: as Clear, and its frames' memory goes back to the system.
+  void Discard(BucketIndex bucket) { Empty(bucket, true); }
 
   const BucketStoreStats& Stats() const { return Counters; }
   std::size_t PoolPages() const { return FramePage.size(); }
@@ -135,6 +142,7 @@ private:
   void IndexCorners(std::size_t frame);
   /// Appends the triangles of one page to `out`.
   void Unpack(const unsigned char* page, std::vector<SoupTriangle>& out) const;
+  void Empty(BucketIndex bucket, bool releaseMemory);
   /// Picks not recently used frames: clean ones are freed now, dirty ones go to a new
   /// background write batch.
   void StartEvictions();

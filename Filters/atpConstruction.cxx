@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
-#include <map>
 #include <utility>
 
 namespace atp
@@ -35,6 +34,30 @@ struct NodeResult
   float Sphere[4] = { 0, 0, 0, 0 };
   float SaturatedSphere[4] = { 0, 0, 0, 0 };
   NormalCone Cone; ///< saturated: holds the face normals of the patch and of all descendants
+};
+
+/// The members of one diamond: a run of DiamondGroups::Nodes.
+struct NodeRange
+{
+  const NodeIndex* First;
+  const NodeIndex* Last;
+  const NodeIndex* begin() const { return First; }
+  const NodeIndex* end() const { return Last; }
+  std::size_t size() const { return std::size_t(Last - First); }
+  NodeIndex operator[](std::size_t i) const { return First[i]; }
+};
+
+/// Nodes of one level grouped by diamond, in two flat arrays (a level can hold millions):
+/// group i is Nodes[Start[i]] up to Nodes[Start[i + 1]].
+struct DiamondGroups
+{
+  std::vector<NodeIndex> Nodes;
+  std::vector<std::size_t> Start{ 0 };
+  std::size_t size() const { return Start.size() - 1; }
+  NodeRange operator[](std::size_t i) const
+  {
+    return { Nodes.data() + Start[i], Nodes.data() + Start[i + 1] };
+  }
 };
 
 /// The nodes of one level in file order (by the Morton code of their centroid, then by id, so
@@ -72,6 +95,7 @@ public:
   ConstructionStats Run(const std::string& outputPath)
   {
     Runner.Begin(Context);
+    Partition.StopInserting();
     NumberNodes();
     // The intermediate patches of the level below, all read by this level's diamonds, go back
     // to the file system at once when the level is done: one hole punched per level, not one
@@ -214,8 +238,10 @@ private:
   /// invariant every diamond keeps); their error is zero.
   void SaturateLeafDiamonds(const std::vector<NodeIndex>& leaves)
   {
-    for (const std::vector<NodeIndex>& members : GroupByDiamond(leaves))
+    const DiamondGroups diamonds = GroupByDiamond(leaves);
+    for (std::size_t d = 0; d < diamonds.size(); ++d)
     {
+      const NodeRange members = diamonds[d];
       std::vector<Sphere> spheres;
       for (NodeIndex m : members)
       {
@@ -231,26 +257,35 @@ private:
   }
 
   /// Nodes of one level grouped by diamond: groups ordered by diamond id, members by TetId.
-  std::vector<std::vector<NodeIndex>> GroupByDiamond(const std::vector<NodeIndex>& nodes) const
+  DiamondGroups GroupByDiamond(const std::vector<NodeIndex>& nodes) const
   {
-    std::map<std::uint64_t, std::vector<NodeIndex>> groups;
+    std::vector<std::pair<std::pair<std::uint64_t, std::uint64_t>, NodeIndex>> keys;
+    keys.reserve(nodes.size());
     for (NodeIndex n : nodes)
     {
-      groups[DiamondOf(Forest.Geometry(n)).Bits].push_back(n);
+      keys.push_back({ { DiamondOf(Forest.Geometry(n)).Bits, Forest[n].Id.Bits }, n });
     }
-    std::vector<std::vector<NodeIndex>> ordered;
-    for (auto& [id, members] : groups)
+    std::sort(keys.begin(), keys.end());
+    DiamondGroups groups;
+    groups.Nodes.reserve(keys.size());
+    for (std::size_t i = 0; i < keys.size(); ++i)
     {
-      std::sort(members.begin(), members.end(),
-        [this](NodeIndex a, NodeIndex b) { return Forest[a].Id < Forest[b].Id; });
-      ordered.push_back(std::move(members));
+      if (i > 0 && keys[i].first.first != keys[i - 1].first.first)
+      {
+        groups.Start.push_back(i);
+      }
+      groups.Nodes.push_back(keys[i].second);
     }
-    return ordered;
+    if (!keys.empty())
+    {
+      groups.Start.push_back(keys.size());
+    }
+    return groups;
   }
 
   void SimplifyDiamonds(const std::vector<NodeIndex>& inner, bool haveParents)
   {
-    const std::vector<std::vector<NodeIndex>> diamonds = GroupByDiamond(inner);
+    const DiamondGroups diamonds = GroupByDiamond(inner);
     Runner.Run(
       diamonds.size(),
       [&](std::size_t i, PatchJob& job) { LoadDiamond(diamonds[i], job); },
@@ -261,7 +296,7 @@ private:
   }
 
   /// A diamond's job: its members' shapes and their children's full-precision patches.
-  void LoadDiamond(const std::vector<NodeIndex>& members, PatchJob& job) const
+  void LoadDiamond(NodeRange members, PatchJob& job) const
   {
     for (NodeIndex m : members)
     {
@@ -278,7 +313,7 @@ private:
   /// Runs on the main thread, in diamond order: stores the patches and saturates errors,
   /// spheres and cones over the diamond and its children (paper 5.2).
   void SaturateDiamond(
-    const std::vector<NodeIndex>& members, const PatchJobResult& made, bool haveParents)
+    NodeRange members, const PatchJobResult& made, bool haveParents)
   {
     double childSaturatedError = 0;
     std::vector<Sphere> spheres;

@@ -60,8 +60,11 @@ public:
   {
     Buckets.Read(std::uint32_t(leaf), out);
   }
+  /// Once every triangle is in: what only inserting needs goes back to the system (bucket
+  /// memory for appending), and released leaves give back theirs from now on.
+  void StopInserting() { Buckets.StopAppending(); }
   /// Empties the leaf's bucket once its triangles are read for the last time.
-  void ReleaseLeaf(TetraForest::NodeIndex leaf) { Buckets.Clear(std::uint32_t(leaf)); }
+  void ReleaseLeaf(TetraForest::NodeIndex leaf) { Buckets.Discard(std::uint32_t(leaf)); }
   PartitionStats Stats() const;
   const PartitionOptions& Options() const { return Settings; }
 

@@ -100,6 +100,33 @@ void HugePageBuffer::Prefault(std::size_t offset, std::size_t bytes) const
 #endif
 }
 
+void HugePageBuffer::Release(std::size_t offset, std::size_t bytes)
+{
+  if (offset >= this->Bytes)
+  {
+    return;
+  }
+  bytes = std::min(bytes, this->Bytes - offset);
+  unsigned char* const start = static_cast<unsigned char*>(this->Memory) + offset;
+  if (this->Bytes < HugePageBytes)
+  {
+    std::memset(start, 0, bytes); // heap memory: nothing to give back
+    return;
+  }
+  static const std::uintptr_t page = std::uintptr_t(::sysconf(_SC_PAGESIZE));
+  const std::uintptr_t begin = std::uintptr_t(start), end = begin + bytes;
+  const std::uintptr_t wholeBegin = (begin + page - 1) / page * page;
+  const std::uintptr_t wholeEnd = std::max(wholeBegin, end / page * page);
+  std::memset(start, 0, std::min(end, wholeBegin) - begin);
+  std::memset(reinterpret_cast<void*>(wholeEnd), 0, end - wholeEnd);
+  // A private anonymous mapping reads back zero-filled pages after MADV_DONTNEED.
+  if (wholeEnd > wholeBegin &&
+    ::madvise(reinterpret_cast<void*>(wholeBegin), wholeEnd - wholeBegin, MADV_DONTNEED) != 0)
+  {
+    std::memset(reinterpret_cast<void*>(wholeBegin), 0, wholeEnd - wholeBegin);
+  }
+}
+
 HugePageBuffer::HugePageBuffer(HugePageBuffer&& other) noexcept
   : Memory(std::exchange(other.Memory, nullptr))
   , Bytes(std::exchange(other.Bytes, 0))

@@ -43,6 +43,9 @@ public:
   /// busier thread writing there later finds the memory mapped. Thread-safe with writes to the
   /// range. Does nothing where the kernel cannot (before Linux 5.14).
   void Prefault(std::size_t offset, std::size_t bytes) const;
+  /// Gives the memory of [offset, offset + bytes) back to the system (the whole pages within
+  /// it; any partial page at its ends is zeroed instead): the range reads as zeros after.
+  void Release(std::size_t offset, std::size_t bytes);
 
 private:
   void* Memory = nullptr;

@@ -131,6 +131,86 @@ TEST(BucketStore, WithoutColorsTrianglesReadBackWhite)
   CheckEvictionAndReuse(false);
 }
 
+namespace
+{
+/// Resident memory of this process (VmRSS), in bytes.
+std::uint64_t ResidentBytes()
+{
+  std::FILE* status = std::fopen("/proc/self/status", "r");
+  char line[256];
+  std::uint64_t kib = 0;
+  while (status && std::fgets(line, sizeof(line), status))
+  {
+    std::sscanf(line, "VmRSS: %lu kB", &kib);
+  }
+  if (status)
+  {
+    std::fclose(status);
+  }
+  return kib * 1024;
+}
+} // namespace
+
+// Once partitioning is over, construction empties the buckets one by one: the memory of their
+// pool frames goes back to the system as it does (a construction of the brain dropped from
+// 300 to 50 MiB), and appending still works after it.
+TEST(BucketStore, DiscardedBucketsGiveTheirPoolMemoryBack)
+{
+  const std::size_t budget = std::size_t(48) << 20;
+  BucketStore store("", budget, false);
+  std::vector<std::vector<SoupTriangle>> reference(64);
+  // About 30 MiB of pages (no shared corners: some 55 bytes a triangle).
+  for (int i = 0; i < 550000; ++i)
+  {
+    const std::uint32_t bucket = std::uint32_t(i % 64);
+    SoupTriangle t = MakeTriangle(float(i), float(bucket), 1, 0.5f, std::uint8_t(i & 7));
+    std::memset(t.Colors, 255, sizeof(t.Colors));
+    store.Append(bucket, t);
+    reference[bucket].push_back(t);
+  }
+  store.StopAppending(); // gives back the free frames and corner lookups
+  const std::uint64_t full = ResidentBytes();
+  for (std::uint32_t bucket = 0; bucket < 60; ++bucket)
+  {
+    std::vector<SoupTriangle> got;
+    store.Read(bucket, got);
+    ASSERT_EQ(got.size(), reference[bucket].size());
+    ASSERT_EQ(std::memcmp(got.data(), reference[bucket].data(), got.size() * sizeof(SoupTriangle)), 0);
+    store.Discard(bucket);
+    reference[bucket].clear();
+  }
+  const std::uint64_t drained = ResidentBytes();
+  EXPECT_GT(full, drained + (std::uint64_t(20) << 20)) << full << " -> " << drained << " bytes";
+  // Appends still work: to a kept bucket (its last page's corner lookup is rebuilt), to a
+  // discarded one, to a new one.
+  for (const std::uint32_t bucket : { 61u, 3u, 100u })
+  {
+    if (bucket >= reference.size())
+    {
+      reference.resize(bucket + 1);
+    }
+    for (int i = 0; i < 2000; ++i)
+    {
+      SoupTriangle t = MakeTriangle(float(i), -float(bucket), 2, 0.25f);
+      std::memset(t.Colors, 255, sizeof(t.Colors));
+      if (i > 0)
+      {
+        std::memcpy(t.V[0], reference[bucket].back().V[1], sizeof(t.V[0])); // shared corners
+      }
+      store.Append(bucket, t);
+      reference[bucket].push_back(t);
+    }
+  }
+  for (std::uint32_t bucket = 0; bucket < reference.size(); ++bucket)
+  {
+    std::vector<SoupTriangle> got;
+    store.Read(bucket, got);
+    ASSERT_EQ(got.size(), reference[bucket].size()) << "bucket " << bucket;
+    ASSERT_EQ(std::memcmp(got.data(), reference[bucket].data(), got.size() * sizeof(SoupTriangle)), 0)
+      << "bucket " << bucket;
+  }
+}
+
 // Stream neighbours share corners, which a bucket finds again without a page lookup. Buckets
 // whose numbers agree in their low bits, appended in turn, and a bucket emptied and filled
 // again (its recycled page starts without corners) must not take each other's corner numbers.

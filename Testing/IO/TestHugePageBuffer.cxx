@@ -1,5 +1,5 @@
 // HugePageBuffer: zero-filled, aligned to a huge page, movable, advised for transparent huge
-// pages, and a request beyond the address space is refused.
+// pages, memory given back by ranges, and a request beyond the address space is refused.
 #include "atpHugePageBuffer.h"
 
 #include <gtest/gtest.h>
@@ -11,6 +11,8 @@
 #include <new>
 #include <sstream>
 #include <string>
+#include <sys/mman.h>
+#include <unistd.h>
 #include <vector>
 
 namespace
@@ -59,6 +61,60 @@ TEST(HugePageBuffer, PrefaultKeepsWhatIsWrittenAndStaysInRange)
   HugePageBuffer small(100);
   small.Prefault(0, 100); // heap memory: a no-op
   EXPECT_EQ(static_cast<std::uint8_t*>(small.Data())[99], 0);
+}
+
+/// How many of the 4 KiB-or-larger pages of [begin, end) are resident (mincore).
+std::size_t ResidentPages(const void* begin, std::size_t bytes)
+{
+  const std::size_t page = std::size_t(::sysconf(_SC_PAGESIZE));
+  std::vector<unsigned char> flags((bytes + page - 1) / page);
+  if (::mincore(const_cast<void*>(begin), bytes, flags.data()) != 0)
+  {
+    return ~std::size_t(0);
+  }
+  std::size_t resident = 0;
+  for (unsigned char f : flags)
+  {
+    resident += f & 1;
+  }
+  return resident;
+}
+
+TEST(HugePageBuffer, ReleasedRangesReadZeroAndLeaveMemory)
+{
+  const std::size_t bytes = 4 * atp::HugePageBytes;
+  const std::size_t page = std::size_t(::sysconf(_SC_PAGESIZE));
+  HugePageBuffer buffer(bytes);
+  auto* data = static_cast<std::uint8_t*>(buffer.Data());
+  for (std::size_t i = 0; i < bytes; ++i)
+  {
+    data[i] = std::uint8_t(i % 251 + 1);
+  }
+  ASSERT_EQ(ResidentPages(data, bytes), bytes / page);
+  // Unaligned ends: the partial pages are zeroed, the whole ones in between unmapped.
+  const std::size_t first = atp::HugePageBytes + 100, last = 3 * atp::HugePageBytes - 100;
+  buffer.Release(first, last - first);
+  buffer.Release(bytes - 10, 1000); // clipped at the end
+  buffer.Release(bytes, 10);        // nothing there
+  // Before reading it back: a read maps the zero page, which mincore counts.
+  const std::size_t wholePages = (last / page) - (first / page + 1);
+  EXPECT_EQ(ResidentPages(data + (first / page + 1) * page, wholePages * page), 0u);
+  EXPECT_EQ(ResidentPages(data, atp::HugePageBytes), atp::HugePageBytes / page);
+  for (std::size_t i = 0; i < bytes; ++i)
+  {
+    const bool released = (i >= first && i < last) || i >= bytes - 10;
+    ASSERT_EQ(data[i], released ? 0 : std::uint8_t(i % 251 + 1)) << "byte " << i;
+  }
+  data[2 * atp::HugePageBytes] = 9; // usable again
+  EXPECT_EQ(data[2 * atp::HugePageBytes], 9);
+
+  HugePageBuffer small(100); // heap memory: zeroed only
+  std::fill_n(static_cast<std::uint8_t*>(small.Data()), 100, std::uint8_t(3));
+  small.Release(10, 20);
+  for (std::size_t i = 0; i < 100; ++i)
+  {
+    ASSERT_EQ(static_cast<std::uint8_t*>(small.Data())[i], i >= 10 && i < 30 ? 0 : 3);
+  }
 }
 
 TEST(HugePageBuffer, EmptyAndMoved)
