@@ -179,7 +179,7 @@ private:
   std::vector<std::uint32_t> CollapseOrder; // the removed vertices, first collapsed first
   std::vector<VertexKind> Kind;
   std::vector<Candidate> Best; // per vertex: its queued collapse
-  CollapseQueues Waiting;       // per region: the vertices whose collapse removes its triangles
+  CollapseQueues Waiting; // per region: the vertices whose collapse removes its triangles
   std::vector<std::int64_t> Counts;           // live triangles per region
   std::int64_t Excess = 0;                    // sum over regions of max(0, count - quota)
   /// Collapses that would also remove triangles of regions within their quotas wait here, and
@@ -199,6 +199,16 @@ private:
   std::uint32_t StampU = 0, StampV = 0;
 };
 
+/// The number of regions, checked before anything is sized by it.
+std::size_t CheckedRegionCount(int regionCount, const std::vector<std::uint32_t>& quotas)
+{
+  if (regionCount < 1 || quotas.size() != std::size_t(regionCount))
+  {
+    throw std::invalid_argument("Simplify: need one quota per region");
+  }
+  return std::size_t(regionCount);
+}
+
 Simplifier::Simplifier(const PatchMesh& mesh, int regionCount, const RegionFunction& regionOf,
   const std::vector<std::uint32_t>& quotas, const SimplifyOptions& options)
   : Mesh(mesh)
@@ -207,12 +217,8 @@ Simplifier::Simplifier(const PatchMesh& mesh, int regionCount, const RegionFunct
   , Quotas(quotas)
   , VertexCount(mesh.VertexCount())
   , TriangleCount(mesh.TriangleCount())
-  , Waiting(std::size_t(std::max(regionCount, 1)), VertexCount)
+  , Waiting(CheckedRegionCount(regionCount, quotas), VertexCount)
 {
-  if (regionCount < 1 || quotas.size() != std::size_t(regionCount))
-  {
-    throw std::invalid_argument("Simplify: need one quota per region");
-  }
   Faces.resize(TriangleCount);
   for (std::size_t t = 0; t < TriangleCount; ++t)
   {

@@ -13,6 +13,7 @@
 #include <map>
 #include <random>
 #include <set>
+#include <stdexcept>
 #include <thread>
 
 using namespace atp;
@@ -652,4 +653,14 @@ TEST(CollapseQueues, FrontsFollowChangingKeys)
     }
     EXPECT_TRUE(queues.Empty(q));
   }
+}
+
+TEST(Simplifier, RejectsMismatchedQuotasAndRegionsOutOfRange)
+{
+  const PatchMesh mesh = Grid(10, [](double, double) { return 0.25; }, false);
+  EXPECT_THROW(Simplify(mesh, 2, OneRegion(), { 10 }), std::invalid_argument);
+  EXPECT_THROW(Simplify(mesh, 0, OneRegion(), {}), std::invalid_argument);
+  EXPECT_THROW(Simplify(mesh, 1 << 30, OneRegion(), { 10 }), std::invalid_argument); // nothing sized first
+  const RegionFunction outside = [](const double*, int) { return 2; };
+  EXPECT_THROW(Simplify(mesh, 2, outside, { 10, 10 }), std::invalid_argument);
 }
