@@ -452,6 +452,8 @@ void BucketStore::StopAppending()
     Prefaulting.wait(); // it must not map frames again after they are released
   }
   PrefaultedFrames = FramePage.size();
+  Pool.StopHugePages();
+  CornerTableMemory.StopHugePages();
   // Runs of free frames, one call each (the never used ones are one run at the end).
   std::vector<std::size_t> free = FreeFrames;
   std::sort(free.begin(), free.end());

@@ -100,6 +100,14 @@ void HugePageBuffer::Prefault(std::size_t offset, std::size_t bytes) const
 #endif
 }
 
+void HugePageBuffer::StopHugePages()
+{
+  if (this->Bytes >= HugePageBytes)
+  {
+    ::madvise(this->Memory, RoundedToHugePages(this->Bytes), MADV_NOHUGEPAGE);
+  }
+}
+
 void HugePageBuffer::Release(std::size_t offset, std::size_t bytes)
 {
   if (offset >= this->Bytes)

@@ -45,7 +45,11 @@ public:
   void Prefault(std::size_t offset, std::size_t bytes) const;
   /// Gives the memory of [offset, offset + bytes) back to the system (the whole pages within
   /// it; any partial page at its ends is zeroed instead): the range reads as zeros after.
+  /// Call StopHugePages first when a buffer shrinks piece by piece.
   void Release(std::size_t offset, std::size_t bytes);
+  /// No more huge pages for this buffer: otherwise the kernel's khugepaged, which by default
+  /// collapses a 2 MiB range holding a single 4 KiB page, fills released pieces back in.
+  void StopHugePages();
 
 private:
   void* Memory = nullptr;

@@ -183,7 +183,7 @@ int HugePageEligible(const void* address)
   return -1;
 }
 
-TEST(HugePageBuffer, AdvisedForHugePages)
+TEST(HugePageBuffer, AdvisedForHugePagesUntilStopped)
 {
   std::ifstream mode("/sys/kernel/mm/transparent_hugepage/enabled");
   std::string modes;
@@ -200,6 +200,10 @@ TEST(HugePageBuffer, AdvisedForHugePages)
     GTEST_SKIP() << "this kernel's smaps has no THPeligible line";
   }
   EXPECT_EQ(eligible, 1);
+  // Once it only shrinks, khugepaged must not fill released pieces back in.
+  buffer.StopHugePages();
+  EXPECT_EQ(HugePageEligible(buffer.Data()), 0);
+  EXPECT_EQ(static_cast<char*>(buffer.Data())[0], 1);
 }
 
 } // namespace
