@@ -127,6 +127,10 @@ private:
   void FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, std::uint32_t w);
   int RegionOf(const double point[3], int likely) const;
   bool OverQuota(int r) const { return Counts[std::size_t(r)] > std::int64_t(Quotas[std::size_t(r)]); }
+  /// Corner c (3 * triangle + k): its vertex, and the next corner of that vertex's fan.
+  std::uint32_t& VertexAt(std::uint32_t c) { return Faces[c / 3].V[c % 3]; }
+  std::uint32_t& FanNext(std::uint32_t c) { return Faces[c / 3].Next[c % 3]; }
+  std::uint32_t FanNext(std::uint32_t c) const { return Faces[c / 3].Next[c % 3]; }
   bool Contains(std::uint32_t t, std::uint32_t v) const
   {
     return Faces[t].V[0] == v || Faces[t].V[1] == v || Faces[t].V[2] == v;
@@ -135,7 +139,7 @@ private:
   template <typename Visit>
   void ForEachCorner(std::uint32_t v, Visit visit) const
   {
-    for (std::uint32_t c = FirstCorner[v]; c != None; c = Faces[c / 3].Next[c % 3])
+    for (std::uint32_t c = FirstCorner[v]; c != None; c = FanNext(c))
     {
       if (!Faces[c / 3].Removed)
       {
@@ -316,8 +320,8 @@ void Simplifier::LinkCorners()
       Faces[t].Removed = 1;
       continue;
     }
-    Faces[c / 3].Next[c % 3] = FirstCorner[Faces[c / 3].V[c % 3]];
-    FirstCorner[Faces[c / 3].V[c % 3]] = std::uint32_t(c);
+    FanNext(std::uint32_t(c)) = FirstCorner[VertexAt(std::uint32_t(c))];
+    FirstCorner[VertexAt(std::uint32_t(c))] = std::uint32_t(c);
   }
 }
 
@@ -365,11 +369,11 @@ void Simplifier::GatherFan(std::uint32_t u, std::vector<std::uint32_t>& fan)
     const std::uint32_t c = *link;
     if (Faces[c / 3].Removed)
     {
-      *link = Faces[c / 3].Next[c % 3];
+      *link = FanNext(c);
       continue;
     }
     fan.push_back(c);
-    link = &Faces[c / 3].Next[c % 3];
+    link = &FanNext(c);
   }
 }
 
@@ -657,7 +661,7 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
   if (movesPocket)
   {
     // A moved triangle becomes (v, a, b) with a, b the opposite corners: it must not exist yet.
-    for (std::uint32_t c = FirstCorner[v]; c != None; c = Faces[c / 3].Next[c % 3])
+    for (std::uint32_t c = FirstCorner[v]; c != None; c = FanNext(c))
     {
       const std::uint32_t t = c / 3;
       if (!Faces[t].Removed && !Contains(t, u) && Contains(t, opposite[0]) && Contains(t, opposite[1]))
@@ -877,7 +881,7 @@ void Simplifier::FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, 
       acrossWU = s;
     }
   }
-  for (std::uint32_t c = FirstCorner[v]; c != None; c = Faces[c / 3].Next[c % 3])
+  for (std::uint32_t c = FirstCorner[v]; c != None; c = FanNext(c))
   {
     const std::uint32_t s = c / 3;
     if (s != t && !Faces[s].Removed && !Contains(s, u) && Contains(s, w))
@@ -919,10 +923,10 @@ void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
       Faces[t].Removed = 1;
       continue;
     }
-    Faces[c / 3].V[c % 3] = v;
+    VertexAt(c) = v;
     Faces[t].Region = MovedRegions[i];
     ++Counts[std::size_t(MovedRegions[i])];
-    Faces[c / 3].Next[c % 3] = head;
+    FanNext(c) = head;
     head = c;
   }
   FirstCorner[v] = head;
