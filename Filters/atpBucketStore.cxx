@@ -44,6 +44,7 @@ std::size_t HashCorner(std::uint64_t low, std::uint64_t high)
 
 BucketStore::BucketStore(const std::string& scratchDirectory, std::size_t memoryBudgetBytes, bool colors)
   : Disk(scratchDirectory)
+  , Buckets(scratchDirectory)
   , CornerBytes(PositionNormalBytes + (colors ? 4 : 0))
   , LastTriangles(LastTriangleSlots)
 {
@@ -367,9 +368,9 @@ bool BucketStore::AddToPage(std::size_t frame, const SoupTriangle& triangle, Buc
 
 void BucketStore::Append(BucketIndex bucketIndex, const SoupTriangle& triangle)
 {
-  if (bucketIndex >= Buckets.size())
+  if (bucketIndex >= Buckets.Size())
   {
-    Buckets.resize(std::size_t(bucketIndex) + 1);
+    Buckets.Resize(std::size_t(bucketIndex) + 1, Bucket());
   }
   Bucket& bucket = Buckets[bucketIndex];
   const PageIndex lastPage = bucket.LastPage;
@@ -390,7 +391,7 @@ void BucketStore::Append(BucketIndex bucketIndex, const SoupTriangle& triangle)
 
 void BucketStore::Read(BucketIndex bucketIndex, std::vector<SoupTriangle>& out) const
 {
-  if (bucketIndex >= Buckets.size())
+  if (bucketIndex >= Buckets.Size())
   {
     return;
   }
@@ -471,7 +472,7 @@ void BucketStore::StopAppending()
 
 void BucketStore::Empty(BucketIndex bucketIndex, bool releaseMemory)
 {
-  if (bucketIndex >= Buckets.size())
+  if (bucketIndex >= Buckets.Size())
   {
     return;
   }

@@ -14,6 +14,7 @@
 #define atpBucketStore_h
 
 #include "atpHugePageBuffer.h"
+#include "atpScratchArray.h"
 #include "atpScratchFile.h"
 #include "atpTriangleSource.h"
 #include "vtkATPFiltersModule.h"
@@ -51,7 +52,7 @@ public:
   void Append(BucketIndex bucket, const SoupTriangle& triangle);
   std::uint64_t Count(BucketIndex bucket) const
   {
-    return bucket < Buckets.size() ? Buckets[bucket].Count : 0;
+    return bucket < Buckets.Size() ? Buckets[bucket].Count : 0;
   }
   /// Appends the bucket's triangles to `out`, in insertion order.
   void Read(BucketIndex bucket, std::vector<SoupTriangle>& out) const;
@@ -64,6 +65,10 @@ public:
   void StopAppending();
   /// Empties the bucket for good: as Clear, and its frames' memory goes back to the system.
   void Discard(BucketIndex bucket) { Empty(bucket, true); }
+
+  /// Gives the pages of the bucket table (one record per node of the forest, so it grows with
+  /// the input) back to the system; they come back as they are used.
+  void ReleaseResident() const { Buckets.ReleaseResident(); }
 
   const BucketStoreStats& Stats() const { return Counters; }
   std::size_t PoolPages() const { return FramePage.size(); }
@@ -158,8 +163,7 @@ private:
   std::uint16_t* CornerTable(std::size_t frame) const;
 
   ScratchFile Disk;
-  /// Indexed at random by every append: on huge pages.
-  std::vector<Bucket, HugePageAllocator<Bucket>> Buckets;
+  ScratchArray<Bucket> Buckets; ///< in a scratch file's mapping, see ReleaseResident
   std::vector<LastTriangle> LastTriangles;
   /// Bytes of one corner: position, normal, and color when kept.
   const std::size_t CornerBytes;

@@ -6,6 +6,7 @@
 #include "atpPatchJobRunner.h"
 #include "atpPatchStore.h"
 #include "atpQuantizationGrid.h"
+#include "atpScratchArray.h"
 #include "atpScratchFile.h"
 
 #include <algorithm>
@@ -21,7 +22,7 @@ using NodeIndex = TetraForest::NodeIndex;
 
 /// What construction knows about one tetrahedron once its patch is made. Kept while its level
 /// or its parent's is being made, then written out as its node record (`ModelConstruction::Spill`):
-/// the build holds two levels of these, not the whole forest's.
+/// the build holds two levels of these, not the whole forest's, and those in scratch arrays.
 struct NodeResult
 {
   PatchStore::Handle Intermediate; ///< full-precision patch, until the parent diamond reads it
@@ -60,13 +61,13 @@ struct DiamondGroups
   }
 };
 
-/// The nodes of one level in file order (by the Morton code of their centroid, then by id, so
-/// that the tetrahedra a cut visits together lie together in the file), and where their records
-/// and encoded patches wait for the model file.
+/// One level's nodes: FileOrder[FirstFileIndex, FirstFileIndex + Count), in file order (by the
+/// Morton code of their centroid, then by id, so that the tetrahedra a cut visits together lie
+/// together in the file), and where their records and encoded patches wait for the model file.
 struct Level
 {
-  std::vector<NodeIndex> Nodes;
   std::int32_t FirstFileIndex = 0;
+  std::size_t Count = 0;
   std::uint64_t SpillOffset = 0;                  ///< of its node records in the node scratch
   std::uint64_t EncodedFirst = ~std::uint64_t(0); ///< its encoded patches in their scratch
   std::uint64_t EncodedEnd = 0;
@@ -89,6 +90,10 @@ public:
     , Intermediate(options.ScratchDirectory)
     , Encoded(options.ScratchDirectory)
     , NodeSpill(options.ScratchDirectory)
+    , FileOrder(options.ScratchDirectory)
+    , FileIndex(options.ScratchDirectory)
+    , Current(options.ScratchDirectory)
+    , Below(options.ScratchDirectory)
   {
   }
 
@@ -105,11 +110,13 @@ public:
     {
       const std::uint64_t levelStart = Intermediate.BytesWritten();
       CurrentLevel = level;
-      Current.assign(Levels[std::size_t(level)].Nodes.size(), NodeResult());
+      const Level& nodes = Levels[std::size_t(level)];
+      Current.Assign(nodes.Count, NodeResult());
       // Made in node order, as the forest grew: the order the buckets were filled in.
       std::vector<NodeIndex> leaves, inner;
-      for (NodeIndex n : Levels[std::size_t(level)].Nodes)
+      for (std::size_t i = 0; i < nodes.Count; ++i)
       {
+        const NodeIndex n = FileOrder[std::size_t(nodes.FirstFileIndex) + i];
         (Forest[n].IsLeaf() ? leaves : inner).push_back(n);
       }
       std::sort(leaves.begin(), leaves.end());
@@ -123,17 +130,15 @@ public:
       {
         Spill(level + 1, Below);
       }
-      Below = std::move(Current);
-      Current = std::vector<NodeResult>();
+      std::swap(Below, Current);
     }
     // Below now holds level 0: the roots.
     Stats.CoarsestError = 0;
-    for (const NodeResult& root : Below)
+    for (std::size_t i = 0; i < Levels[0].Count; ++i)
     {
-      Stats.CoarsestError = std::max(Stats.CoarsestError, root.SaturatedError);
+      Stats.CoarsestError = std::max(Stats.CoarsestError, Below[i].SaturatedError);
     }
     Spill(0, Below);
-    Below = std::vector<NodeResult>();
     Write(outputPath);
     return Stats;
   }
@@ -145,25 +150,37 @@ private:
     Levels.assign(std::size_t(Forest.Depth()) + 1, Level());
     for (NodeIndex n = 0; n < NodeIndex(Forest.Size()); ++n)
     {
-      Levels[std::size_t(Forest[n].Id.Level())].Nodes.push_back(n);
+      ++Levels[std::size_t(Forest[n].Id.Level())].Count;
     }
-    FileIndex.assign(Forest.Size(), 0);
-    std::int32_t next = 0;
-    for (Level& level : Levels)
+    std::vector<std::size_t> placed(Levels.size());
+    for (std::size_t l = 1; l < Levels.size(); ++l)
     {
+      Levels[l].FirstFileIndex = Levels[l - 1].FirstFileIndex + std::int32_t(Levels[l - 1].Count);
+      placed[l] = std::size_t(Levels[l].FirstFileIndex);
+    }
+    FileOrder.Resize(Forest.Size());
+    FileIndex.Resize(Forest.Size());
+    for (NodeIndex n = 0; n < NodeIndex(Forest.Size()); ++n)
+    {
+      FileOrder[placed[std::size_t(Forest[n].Id.Level())]++] = n;
+    }
+    for (const Level& level : Levels)
+    {
+      const std::size_t first = std::size_t(level.FirstFileIndex);
       std::vector<std::pair<std::pair<std::uint64_t, std::uint64_t>, NodeIndex>> keys;
-      keys.reserve(level.Nodes.size());
-      for (NodeIndex n : level.Nodes)
+      keys.reserve(level.Count);
+      for (std::size_t i = first; i < first + level.Count; ++i)
       {
+        const NodeIndex n = FileOrder[i];
         keys.push_back({ { CentroidMorton(Forest.Geometry(n)), Forest[n].Id.Bits }, n });
       }
       std::sort(keys.begin(), keys.end());
-      level.FirstFileIndex = next;
       for (std::size_t i = 0; i < keys.size(); ++i)
       {
-        level.Nodes[i] = keys[i].second;
-        FileIndex[std::size_t(keys[i].second)] = next++;
+        FileOrder[first + i] = keys[i].second;
+        FileIndex[std::size_t(keys[i].second)] = std::int32_t(first + i);
       }
+      ReleaseResident();
     }
   }
 
@@ -187,9 +204,26 @@ private:
       std::max(Stats.PeakScratchBytes, EncodedEnd + Intermediate.PeakBytes() + NodeSpillEnd);
   }
 
+  /// Gives back the pages of everything that has a record per node (the forest, the bucket
+  /// table, the numbering, the two levels of results): they come back as they are used, so
+  /// resident memory follows the diamonds at work rather than the number of nodes.
+  void ReleaseResident() const
+  {
+    Partition.ReleaseResident();
+    FileOrder.ReleaseResident();
+    FileIndex.ReleaseResident();
+    Current.ReleaseResident();
+    Below.ReleaseResident();
+  }
+
   void ReportProgress(std::size_t nodesDone)
   {
     Done += nodesDone;
+    if (Done >= NextRelease)
+    {
+      ReleaseResident();
+      NextRelease = Done + ReleaseInterval;
+    }
     if (Progress)
     {
       // The last few percent are the file write.
@@ -350,15 +384,15 @@ private:
 
   /// Writes the finished records of a level (`results` in file order) to the node scratch, each
   /// holding its encoded patch's place in PatchOffset and PatchBytes until Write copies it.
-  void Spill(int levelIndex, const std::vector<NodeResult>& results)
+  void Spill(int levelIndex, const ScratchArray<NodeResult>& results)
   {
     Level& level = Levels[std::size_t(levelIndex)];
     level.SpillOffset = NodeSpillEnd;
     std::vector<ModelNode> records;
-    records.reserve(std::min(results.size(), RecordsPerIo));
-    for (std::size_t i = 0; i < results.size(); ++i)
+    records.reserve(std::min(level.Count, RecordsPerIo));
+    for (std::size_t i = 0; i < level.Count; ++i)
     {
-      const TetraForest::Node& tet = Forest[level.Nodes[i]];
+      const TetraForest::Node& tet = Forest[FileOrder[std::size_t(level.FirstFileIndex) + i]];
       const NodeResult& r = results[i];
       ModelNode node;
       std::memset(&node, 0, sizeof(node));
@@ -380,7 +414,7 @@ private:
       level.EncodedFirst = std::min(level.EncodedFirst, r.EncodedOffset);
       level.EncodedEnd = std::max(level.EncodedEnd, r.EncodedOffset + r.EncodedBytes);
       records.push_back(node);
-      if (records.size() == RecordsPerIo || i + 1 == results.size())
+      if (records.size() == RecordsPerIo || i + 1 == level.Count)
       {
         NodeSpill.WriteAt(NodeSpillEnd, records.data(), records.size() * sizeof(ModelNode));
         NodeSpillEnd += records.size() * sizeof(ModelNode);
@@ -400,9 +434,9 @@ private:
     // the scratch shrinks, one level, and one hole punch, at a time.
     for (const Level& level : Levels)
     {
-      for (std::size_t first = 0; first < level.Nodes.size(); first += RecordsPerIo)
+      for (std::size_t first = 0; first < level.Count; first += RecordsPerIo)
       {
-        records.resize(std::min(RecordsPerIo, level.Nodes.size() - first));
+        records.resize(std::min(RecordsPerIo, level.Count - first));
         NodeSpill.ReadAt(level.SpillOffset + first * sizeof(ModelNode), records.data(),
           records.size() * sizeof(ModelNode));
         for (const ModelNode& node : records)
@@ -416,7 +450,7 @@ private:
       {
         Encoded.Release(level.EncodedFirst, level.EncodedEnd - level.EncodedFirst);
       }
-      NodeSpill.Release(level.SpillOffset, level.Nodes.size() * sizeof(ModelNode));
+      NodeSpill.Release(level.SpillOffset, level.Count * sizeof(ModelNode));
     }
     ModelHeader header;
     std::memset(&header, 0, sizeof(header));
@@ -464,12 +498,17 @@ private:
   ScratchFile NodeSpill;
   std::uint64_t NodeSpillEnd = 0;
   static constexpr std::size_t RecordsPerIo = 8192;
+  /// Nodes stored between two ReleaseResident: a few thousand diamonds touch a few thousand
+  /// pages, which come back in milliseconds.
+  static constexpr std::size_t ReleaseInterval = 4096;
   std::vector<Level> Levels;
-  std::vector<std::int32_t> FileIndex; ///< per node
+  ScratchArray<NodeIndex> FileOrder;   ///< per file index: the node
+  ScratchArray<std::int32_t> FileIndex; ///< per node
   int CurrentLevel = -1;
-  std::vector<NodeResult> Current; ///< the level being made, in file order
-  std::vector<NodeResult> Below;   ///< the level below it, read by its diamonds
+  ScratchArray<NodeResult> Current; ///< the level being made, in file order
+  ScratchArray<NodeResult> Below;   ///< the level below it, read by its diamonds
   std::size_t Done = 0;
+  std::size_t NextRelease = ReleaseInterval;
   ConstructionStats Stats;
 };
 

@@ -8,11 +8,16 @@ namespace
 {
 /// Triangles located together (interleaved descents), and centroids computed at a time.
 constexpr std::size_t Group = 256;
+/// Triangles inserted between two releases of the forest's and the bucket table's pages: a
+/// stream touches few leaves and the top of the forest in that time, whatever the forest's
+/// size, and takes those pages back in well under a millisecond.
+constexpr std::uint64_t ReleaseInterval = std::uint64_t(1) << 20;
 }
 
 Partitioner::Partitioner(const Box& bounds, const PartitionOptions& options)
   : Settings(options)
   , Lattice(bounds.Min.data(), bounds.Max.data())
+  , Tetrahedra(options.ScratchDirectory)
   , Buckets(options.ScratchDirectory, options.BucketMemoryBytes, options.Colors)
 {
   Settings.LeafCapacity = std::max<std::uint32_t>(1, Settings.LeafCapacity);
@@ -84,6 +89,11 @@ void Partitioner::Insert(const SoupTriangle* triangles, const double (*centroids
         leaf = Tetrahedra.Descend(leaf, centroid);
       }
     }
+  }
+  if (Inserted >= NextRelease)
+  {
+    ReleaseResident();
+    NextRelease = Inserted + ReleaseInterval;
   }
 }
 

@@ -62,7 +62,19 @@ public:
   }
   /// Once every triangle is in: what only inserting needs goes back to the system (bucket
   /// memory for appending), and released leaves give back theirs from now on.
-  void StopInserting() { Buckets.StopAppending(); }
+  void StopInserting()
+  {
+    Buckets.StopAppending();
+    ReleaseResident();
+  }
+  /// Gives back the pages of the two arrays that grow with the input, the forest and the bucket
+  /// table (one record per tetrahedron each); they come back as they are used. Inserting does
+  /// this every million triangles, and construction as it goes.
+  void ReleaseResident() const
+  {
+    Tetrahedra.ReleaseResident();
+    Buckets.ReleaseResident();
+  }
   /// Empties the leaf's bucket once its triangles are read for the last time.
   void ReleaseLeaf(TetraForest::NodeIndex leaf) { Buckets.Discard(std::uint32_t(leaf)); }
   PartitionStats Stats() const;
@@ -82,6 +94,7 @@ private:
   std::vector<SoupTriangle> Moving; // reused buffer for the triangles of a split leaf
   TetraForest::LeafHint Hint;
   std::uint64_t Inserted = 0;
+  std::uint64_t NextRelease = 0;
   std::uint64_t Splits = 0;
 };
 

@@ -8,7 +8,8 @@ namespace atp
 {
 static_assert(sizeof(TetraForest::Node) == 24, "a forest node stays small: they are millions");
 
-TetraForest::TetraForest()
+TetraForest::TetraForest(const std::string& scratchDirectory)
+  : Nodes(scratchDirectory)
 {
   for (int r = 0; r < RootCount; ++r)
   {
@@ -22,9 +23,9 @@ TetraForest::NodeIndex TetraForest::AddNode(TetId id, const Tetra& geometry, Nod
   node.Id = id;
   node.Plane = id.Level() < MaxLevel ? geometry.Plane() : SplitPlane{}; // the deepest never split
   node.Parent = parent;
-  Nodes.push_back(node);
+  Nodes.PushBack(node);
   DeepestLevel = std::max(DeepestLevel, id.Level());
-  return NodeIndex(Nodes.size() - 1);
+  return NodeIndex(Nodes.Size() - 1);
 }
 
 TetraForest::NodeIndex TetraForest::Find(TetId id) const
@@ -188,7 +189,7 @@ void TetraForest::LeavesContaining(
 std::vector<TetraForest::NodeIndex> TetraForest::Leaves() const
 {
   std::vector<NodeIndex> leaves;
-  for (std::size_t i = 0; i < Nodes.size(); ++i)
+  for (std::size_t i = 0; i < Nodes.Size(); ++i)
   {
     if (Nodes[i].IsLeaf())
     {

@@ -1,9 +1,11 @@
-// The in-memory binary forest of tetrahedra (6 roots), refined diamond by diamond.
-// Small by design: one node per tetrahedron, a few thousand triangles per leaf (paper, 5.1).
+// The binary forest of tetrahedra (6 roots), refined diamond by diamond. Small by design: one
+// node per tetrahedron, a few thousand triangles per leaf (paper, 5.1). Still, a billion-triangle
+// surface has millions of nodes: they live in a scratch file's mapping, and the process keeps
+// only the pages it has touched since the last ReleaseResident.
 #ifndef atpTetraForest_h
 #define atpTetraForest_h
 
-#include "atpHugePageBuffer.h"
+#include "atpScratchArray.h"
 #include "atpTetra.h"
 #include "vtkATPFiltersModule.h"
 
@@ -36,10 +38,11 @@ public:
     std::array<NodeIndex, 2> Children() const { return { { FirstChild, FirstChild + 1 } }; }
   };
 
-  /// The six roots, as nodes 0 to 5.
-  TetraForest();
+  /// The six roots, as nodes 0 to 5. The nodes live in a scratch file in `scratchDirectory`
+  /// (empty: $TMPDIR or /tmp).
+  explicit TetraForest(const std::string& scratchDirectory = std::string());
 
-  std::size_t Size() const { return Nodes.size(); }
+  std::size_t Size() const { return Nodes.Size(); }
   const Node& operator[](NodeIndex i) const { return Nodes[std::size_t(i)]; }
   /// The node's tetrahedron, in O(level).
   Tetra Geometry(NodeIndex i) const { return TetraOf(Nodes[std::size_t(i)].Id); }
@@ -122,13 +125,16 @@ public:
   std::vector<NodeIndex> Leaves() const;
   int Depth() const { return DeepestLevel; }
 
+  /// Gives the nodes' pages back to the system; they come back as they are read. Callers do
+  /// this every so often, so that resident memory follows their working set, not the forest.
+  void ReleaseResident() const { Nodes.ReleaseResident(); }
+
 private:
   NodeIndex AddNode(TetId id, const Tetra& geometry, NodeIndex parent);
   /// Finds the node of `id`, splitting coarser diamonds until it exists.
   NodeIndex Materialize(TetId id, const std::function<void(NodeIndex)>& onSplit);
 
-  /// Indexed at random by every point location: on huge pages (atpHugePageBuffer.h).
-  std::vector<Node, HugePageAllocator<Node>> Nodes;
+  ScratchArray<Node> Nodes;
   int DeepestLevel = 0;
 };
 

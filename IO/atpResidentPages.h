@@ -4,6 +4,8 @@
 #ifndef atpResidentPages_h
 #define atpResidentPages_h
 
+#include "vtkATPIOModule.h" // export macro
+
 #include <cstddef>
 
 namespace atp
@@ -12,7 +14,7 @@ namespace atp
 /// Drops the whole pages inside [begin, begin + bytes) from the process. Only for file-backed
 /// mappings (an input file, or a ScratchArray): their content comes back from the file on the
 /// next access. Never call it on ordinary heap memory, which would read back as zeros.
-void ReleaseResidentPages(const void* begin, std::size_t bytes);
+VTKATPIO_EXPORT void ReleaseResidentPages(const void* begin, std::size_t bytes);
 
 }
 

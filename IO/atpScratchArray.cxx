@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <utility>
 #include <sys/mman.h>
 
 namespace atp
@@ -10,6 +11,25 @@ namespace atp
 ScratchMapping::ScratchMapping(const std::string& directory)
   : File(directory)
 {
+}
+
+ScratchMapping::ScratchMapping(ScratchMapping&& other) noexcept
+  : File(std::move(other.File))
+  , Mapping(std::exchange(other.Mapping, nullptr))
+  , MappedBytes(std::exchange(other.MappedBytes, 0))
+{
+}
+
+ScratchMapping& ScratchMapping::operator=(ScratchMapping&& other) noexcept
+{
+  if (this != &other)
+  {
+    this->Unmap();
+    this->File = std::move(other.File);
+    this->Mapping = std::exchange(other.Mapping, nullptr);
+    this->MappedBytes = std::exchange(other.MappedBytes, 0);
+  }
+  return *this;
 }
 
 ScratchMapping::~ScratchMapping()

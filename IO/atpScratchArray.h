@@ -5,13 +5,16 @@
 #ifndef atpScratchArray_h
 #define atpScratchArray_h
 
+#include "atpResidentPages.h"
 #include "atpScratchFile.h"
 #include "vtkATPIOModule.h" // export macro
 
+#include <algorithm>
 #include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 
 namespace atp
 {
@@ -23,6 +26,8 @@ public:
   /// Throws std::runtime_error naming the directory when the file cannot be created.
   explicit ScratchMapping(const std::string& directory);
   ~ScratchMapping();
+  ScratchMapping(ScratchMapping&& other) noexcept;
+  ScratchMapping& operator=(ScratchMapping&& other) noexcept;
   ScratchMapping(const ScratchMapping&) = delete;
   ScratchMapping& operator=(const ScratchMapping&) = delete;
 
@@ -40,32 +45,70 @@ private:
   std::size_t MappedBytes = 0;
 };
 
-/// A zero-initialized array of trivially copyable T in a ScratchMapping.
+/// A zero-initialized array of trivially copyable T in a ScratchMapping. Its pages can leave
+/// the process (ReleaseResident) and come back from the page cache, or from the file once the
+/// kernel has written them out, on the next access: arrays that grow with the input cost the
+/// process only the pages it is working on.
 template<typename T>
 class ScratchArray
 {
   static_assert(std::is_trivially_copyable<T>::value, "ScratchArray stores raw bytes");
 
 public:
-  ScratchArray(const std::string& directory, std::size_t count)
+  explicit ScratchArray(const std::string& directory, std::size_t count = 0)
     : Storage(directory)
   {
     this->Resize(count);
   }
+  ScratchArray(ScratchArray&& other) noexcept
+    : Storage(std::move(other.Storage))
+    , Count(std::exchange(other.Count, 0))
+    , Capacity(std::exchange(other.Capacity, 0))
+  {
+  }
+  ScratchArray& operator=(ScratchArray&& other) noexcept
+  {
+    this->Storage = std::move(other.Storage);
+    this->Count = std::exchange(other.Count, 0);
+    this->Capacity = std::exchange(other.Capacity, 0);
+    return *this;
+  }
 
-  /// Grows to `count` elements, keeping the existing ones; invalidates pointers.
+  /// Grows to `count` elements (never shrinks), keeping the existing ones; new ones are zero.
+  /// The file grows by at least half at a time, so growing by a few elements at a time remaps
+  /// rarely. Invalidates pointers when it remaps.
   void Resize(std::size_t count)
   {
-    if (count > this->Count)
+    if (count > this->Capacity)
     {
       if (count > static_cast<std::size_t>(-1) / sizeof(T))
       {
         throw std::length_error("ScratchArray: size overflows the address space");
       }
-      this->Storage.Grow(count * sizeof(T));
-      this->Count = count;
+      const std::size_t capacity = std::max(count, this->Capacity + this->Capacity / 2);
+      this->Storage.Grow(std::min(capacity, static_cast<std::size_t>(-1) / sizeof(T)) * sizeof(T));
+      this->Capacity = capacity;
     }
+    this->Count = std::max(this->Count, count);
   }
+  /// Resize, the new elements set to `fill`.
+  void Resize(std::size_t count, const T& fill)
+  {
+    const std::size_t old = this->Count;
+    this->Resize(count);
+    std::fill(this->Data() + old, this->Data() + this->Count, fill);
+  }
+  void PushBack(const T& value) { this->Resize(this->Count + 1, value); }
+  /// Holds exactly `count` elements, all set to `fill`; the file keeps its size.
+  void Assign(std::size_t count, const T& fill)
+  {
+    this->Count = 0;
+    this->Resize(count, fill);
+  }
+
+  /// Drops the array's pages from the process's resident memory (ReleaseResidentPages); they
+  /// keep their contents.
+  void ReleaseResident() const { ReleaseResidentPages(this->Data(), this->Count * sizeof(T)); }
 
   T* Data() { return static_cast<T*>(this->Storage.Data()); }
   const T* Data() const { return static_cast<const T*>(this->Storage.Data()); }
@@ -76,6 +119,7 @@ public:
 private:
   ScratchMapping Storage;
   std::size_t Count = 0;
+  std::size_t Capacity = 0;
 };
 
 } // namespace atp

@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <utility>
 #include <fcntl.h>
 #include <stdexcept>
 #include <unistd.h>
@@ -32,6 +33,26 @@ ScratchFile::ScratchFile(const std::string& directory)
       "cannot create a scratch file in " + Directory + ": " + std::strerror(errno));
   }
   ::unlink(buffer.data());
+}
+
+ScratchFile::ScratchFile(ScratchFile&& other) noexcept
+  : Fd(std::exchange(other.Fd, -1))
+  , Directory(std::move(other.Directory))
+{
+}
+
+ScratchFile& ScratchFile::operator=(ScratchFile&& other) noexcept
+{
+  if (this != &other)
+  {
+    if (Fd >= 0)
+    {
+      ::close(Fd);
+    }
+    Fd = std::exchange(other.Fd, -1);
+    Directory = std::move(other.Directory);
+  }
+  return *this;
 }
 
 ScratchFile::~ScratchFile()

@@ -19,6 +19,8 @@ public:
   /// the directory when it cannot.
   explicit ScratchFile(const std::string& directory);
   ~ScratchFile();
+  ScratchFile(ScratchFile&& other) noexcept;
+  ScratchFile& operator=(ScratchFile&& other) noexcept;
   ScratchFile(const ScratchFile&) = delete;
   ScratchFile& operator=(const ScratchFile&) = delete;
 
