@@ -110,13 +110,13 @@ public:
     {
       const std::uint64_t levelStart = Intermediate.BytesWritten();
       CurrentLevel = level;
-      const Level& nodes = Levels[std::size_t(level)];
-      Current.Assign(nodes.Count, NodeResult());
+      const Level& made = Levels[std::size_t(level)];
+      Current.Assign(made.Count, NodeResult());
       // Made in node order, as the forest grew: the order the buckets were filled in.
       std::vector<NodeIndex> leaves, inner;
-      for (std::size_t i = 0; i < nodes.Count; ++i)
+      for (std::size_t i = 0; i < made.Count; ++i)
       {
-        const NodeIndex n = FileOrder[std::size_t(nodes.FirstFileIndex) + i];
+        const NodeIndex n = FileOrder[std::size_t(made.FirstFileIndex) + i];
         (Forest[n].IsLeaf() ? leaves : inner).push_back(n);
       }
       std::sort(leaves.begin(), leaves.end());

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -63,6 +64,7 @@ public:
   ScratchArray(ScratchArray&& other) noexcept
     : Storage(std::move(other.Storage))
     , Count(std::exchange(other.Count, 0))
+    , EverHeld(std::exchange(other.EverHeld, 0))
     , Capacity(std::exchange(other.Capacity, 0))
   {
   }
@@ -70,6 +72,7 @@ public:
   {
     this->Storage = std::move(other.Storage);
     this->Count = std::exchange(other.Count, 0);
+    this->EverHeld = std::exchange(other.EverHeld, 0);
     this->Capacity = std::exchange(other.Capacity, 0);
     return *this;
   }
@@ -85,11 +88,22 @@ public:
       {
         throw std::length_error("ScratchArray: size overflows the address space");
       }
-      const std::size_t capacity = std::max(count, this->Capacity + this->Capacity / 2);
-      this->Storage.Grow(std::min(capacity, static_cast<std::size_t>(-1) / sizeof(T)) * sizeof(T));
+      const std::size_t capacity =
+        std::min(std::max(count, this->Capacity + this->Capacity / 2), static_cast<std::size_t>(-1) / sizeof(T));
+      this->Storage.Grow(capacity * sizeof(T));
       this->Capacity = capacity;
     }
-    this->Count = std::max(this->Count, count);
+    if (count > this->Count)
+    {
+      // Only elements an Assign gave up can hold anything: the file's new space reads zero.
+      const std::size_t stale = std::min(count, this->EverHeld);
+      if (stale > this->Count)
+      {
+        std::memset(static_cast<void*>(this->Data() + this->Count), 0, (stale - this->Count) * sizeof(T));
+      }
+      this->Count = count;
+      this->EverHeld = std::max(this->EverHeld, count);
+    }
   }
   /// Resize, the new elements set to `fill`.
   void Resize(std::size_t count, const T& fill)
@@ -119,6 +133,7 @@ public:
 private:
   ScratchMapping Storage;
   std::size_t Count = 0;
+  std::size_t EverHeld = 0; ///< the most elements held: the file is zero beyond
   std::size_t Capacity = 0;
 };
 

@@ -1,6 +1,7 @@
 // Conformity of diamond refinement, proven by an exact face-matching check and by TetGen, and
 // the same checks rejecting cuts that break a diamond; locating points in a diamond's members.
 #include "ConformityCheck.h"
+#include "ProcessMemory.h"
 #include "atpMemberLocator.h"
 #include "atpTetraForest.h"
 
@@ -48,6 +49,31 @@ TetraForest RandomRefinement(unsigned seed, int splits)
   return forest;
 }
 } // namespace
+
+// A billion-triangle forest has millions of nodes: their pages leave the process when it says
+// so, and come back unchanged.
+TEST(Forest, ReleasedNodesLeaveMemoryAndReadBackTheSame)
+{
+  const TetraForest forest = RandomRefinement(21, 20000);
+  ASSERT_GT(forest.Size(), 200000u); // several MiB of nodes
+  std::vector<std::uint64_t> ids(forest.Size());
+  for (std::size_t n = 0; n < forest.Size(); ++n)
+  {
+    ids[n] = forest[TetraForest::NodeIndex(n)].Id.Bits;
+  }
+  const std::vector<TetraForest::NodeIndex> leaves = forest.Leaves();
+  const long before = atp::testing::MappedFileKiB();
+  forest.ReleaseResident();
+  const long after = atp::testing::MappedFileKiB();
+  // Nearly all of it: other mapped files (code) may come in meanwhile.
+  EXPECT_GE(before - after, long(forest.Size() * sizeof(TetraForest::Node) / 1024) * 9 / 10)
+    << before << " -> " << after << " KiB";
+  EXPECT_EQ(forest.Leaves(), leaves);
+  for (std::size_t n = 0; n < forest.Size(); ++n)
+  {
+    ASSERT_EQ(forest[TetraForest::NodeIndex(n)].Id.Bits, ids[n]) << n;
+  }
+}
 
 TEST(Forest, StartsWithSixRootsThatConform)
 {

@@ -1,5 +1,6 @@
 // Out-of-core partitioning: bucket pages on disk, leaf capacity, conformity, nothing lost.
 #include "ConformityCheck.h"
+#include "ProcessMemory.h"
 #include "atpPartitioner.h"
 #include "atpStreamPartition.h"
 
@@ -142,18 +143,7 @@ bool SameTriangles(const std::vector<SoupTriangle>& a, const std::vector<SoupTri
 /// Resident memory of this process (VmRSS), in bytes.
 std::uint64_t ResidentBytes()
 {
-  std::FILE* status = std::fopen("/proc/self/status", "r");
-  char line[256];
-  std::uint64_t kib = 0;
-  while (status && std::fgets(line, sizeof(line), status))
-  {
-    std::sscanf(line, "VmRSS: %lu kB", &kib);
-  }
-  if (status)
-  {
-    std::fclose(status);
-  }
-  return kib * 1024;
+  return std::uint64_t(atp::testing::StatusKiB("VmRSS")) * 1024;
 }
 } // namespace
 
@@ -220,6 +210,40 @@ TEST(BucketStore, DiscardedBucketsGiveTheirPoolMemoryBack)
     store.Read(bucket, got);
     ASSERT_TRUE(SameTriangles(got, reference[bucket])) << "bucket " << bucket;
   }
+}
+
+// The bucket table has a record per node of the forest: its pages leave the process when it
+// says so, and the records come back unchanged.
+TEST(BucketStore, ReleasedTableLeavesMemoryAndKeepsEveryBucket)
+{
+  BucketStore store("", std::size_t(8) << 20, false);
+  const std::uint32_t buckets = 400000; // 6 MiB of records
+  std::vector<SoupTriangle> appended;
+  for (std::uint32_t bucket = 0; bucket < buckets; bucket += 40000)
+  {
+    appended.push_back(MakeTriangle(float(bucket), 1, 2, 0.5f));
+    store.Append(bucket, appended.back());
+  }
+  store.Append(buckets - 1, MakeTriangle(0, 0, 0, 1)); // the table now spans every bucket
+  std::uint64_t total = 0;
+  for (std::uint32_t bucket = 0; bucket < buckets; ++bucket)
+  {
+    total += store.Count(bucket); // every record read: all of the table resident
+  }
+  ASSERT_EQ(total, appended.size() + 1);
+  const long before = atp::testing::MappedFileKiB();
+  store.ReleaseResident();
+  const long after = atp::testing::MappedFileKiB();
+  EXPECT_GE(before - after, 5L << 10) << before << " -> " << after << " KiB";
+  for (std::uint32_t bucket = 0, i = 0; bucket < buckets; bucket += 40000, ++i)
+  {
+    std::vector<SoupTriangle> got;
+    store.Read(bucket, got);
+    ASSERT_EQ(got.size(), 1u) << bucket;
+    EXPECT_TRUE(SameTriangle(got[0], appended[i])) << bucket;
+  }
+  EXPECT_EQ(store.Count(buckets - 1), 1u);
+  EXPECT_EQ(store.Count(buckets - 2), 0u);
 }
 
 // Stream neighbours share corners, which a bucket finds again without a page lookup. Buckets

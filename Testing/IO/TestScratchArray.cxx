@@ -1,4 +1,5 @@
 // ScratchArray: zero-filled, grows keeping its contents, leaves no file behind.
+#include "ProcessMemory.h"
 #include "atpResidentPages.h"
 #include "atpScratchArray.h"
 
@@ -6,7 +7,6 @@
 
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <sys/mman.h>
 #include <unistd.h>
@@ -60,6 +60,62 @@ TEST(ScratchArray, EmptyArray)
 {
   atp::ScratchArray<float> array(fs::temp_directory_path().string(), 0);
   EXPECT_EQ(array.Size(), 0u);
+  array.ReleaseResident(); // nothing mapped: nothing to do
+}
+
+// The forest and the bucket table grow one record at a time, and construction reuses one array
+// per level.
+TEST(ScratchArray, GrowsByElementsFillsAndReassigns)
+{
+  atp::ScratchArray<std::uint32_t> array("");
+  for (std::uint32_t i = 0; i < 300000; ++i)
+  {
+    array.PushBack(i ^ 0x5a5a5a5au);
+  }
+  ASSERT_EQ(array.Size(), 300000u);
+  for (std::uint32_t i = 0; i < 300000; ++i)
+  {
+    ASSERT_EQ(array[i], i ^ 0x5a5a5a5au) << i;
+  }
+  array.Resize(300010, 7u); // only the new elements take the fill
+  EXPECT_EQ(array[299999], 299999u ^ 0x5a5a5a5au);
+  EXPECT_EQ(array[300000], 7u);
+  EXPECT_EQ(array[300009], 7u);
+  array.Assign(5, 9u); // shrinks, every element filled
+  ASSERT_EQ(array.Size(), 5u);
+  for (std::size_t i = 0; i < 5; ++i)
+  {
+    EXPECT_EQ(array[i], 9u);
+  }
+  array.Resize(7); // over elements Assign gave up: they read zero as new ones do
+  ASSERT_EQ(array.Size(), 7u);
+  EXPECT_EQ(array[4], 9u);
+  EXPECT_EQ(array[5], 0u);
+  EXPECT_EQ(array[6], 0u);
+}
+
+TEST(ScratchArray, MovesKeepTheContentsAndEmptyTheSource)
+{
+  atp::ScratchArray<std::uint64_t> a("", 1000), b("", 10);
+  for (std::size_t i = 0; i < 1000; ++i)
+  {
+    a[i] = 3 * i;
+  }
+  b[9] = 42;
+  std::swap(a, b);
+  ASSERT_EQ(a.Size(), 10u);
+  ASSERT_EQ(b.Size(), 1000u);
+  EXPECT_EQ(a[9], 42u);
+  EXPECT_EQ(b[999], 2997u);
+  atp::ScratchArray<std::uint64_t> c(std::move(b));
+  EXPECT_EQ(b.Size(), 0u);
+  ASSERT_EQ(c.Size(), 1000u);
+  EXPECT_EQ(c[500], 1500u);
+  b = std::move(c); // the moved-from array is whole again
+  EXPECT_EQ(c.Size(), 0u);
+  EXPECT_EQ(b[998], 2994u);
+  b.PushBack(1);
+  EXPECT_EQ(b[1000], 1u);
 }
 } // namespace
 
@@ -81,21 +137,8 @@ std::size_t ResidentPages(const void* begin, std::size_t bytes)
 
 TEST(ScratchArray, ReleasedPagesLeaveMemoryButKeepTheirContents)
 {
-  // mincore reports page-cache residency, not the process's: use the process's own measure
-  // (a scratch file on tmpfs counts as shared memory, on a disk as file pages).
-  auto residentKiB = [] {
-    std::ifstream status("/proc/self/status");
-    std::string line;
-    long total = 0;
-    while (std::getline(status, line))
-    {
-      if (line.rfind("RssFile:", 0) == 0 || line.rfind("RssShmem:", 0) == 0)
-      {
-        total += std::stol(line.substr(line.find(':') + 1));
-      }
-    }
-    return total;
-  };
+  // mincore reports page-cache residency, not the process's: use the process's own measure.
+  const auto residentKiB = atp::testing::MappedFileKiB;
   constexpr std::size_t count = std::size_t(64) << 20 >> 3; // 64 MiB of uint64
   atp::ScratchArray<std::uint64_t> array(fs::temp_directory_path().string(), count);
   for (std::size_t i = 0; i < count; ++i)

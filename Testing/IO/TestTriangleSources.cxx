@@ -14,6 +14,7 @@
 #include <vtkXMLPolyDataWriter.h>
 
 #include "FileTestFixture.h"
+#include "ProcessMemory.h"
 
 #include <gtest/gtest.h>
 
@@ -924,20 +925,7 @@ TEST_F(TriangleSources, WithoutColorsCornersAreOpaqueWhite)
 // ---------------------------------------------------------------------------------------------
 // Degenerate triangles and boundary flags
 
-/// A line of /proc/self/status, in KiB.
-long StatusKiB(const std::string& key)
-{
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  while (std::getline(status, line))
-  {
-    if (line.rfind(key + ":", 0) == 0)
-    {
-      return std::stol(line.substr(key.size() + 1));
-    }
-  }
-  return 0;
-}
+using atp::testing::StatusKiB;
 
 TEST_F(TriangleSources, OpeningLetsGoOfTheVertexPagesItHasRead)
 {
