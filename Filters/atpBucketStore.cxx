@@ -45,6 +45,7 @@ std::size_t HashCorner(std::uint64_t low, std::uint64_t high)
 BucketStore::BucketStore(const std::string& scratchDirectory, std::size_t memoryBudgetBytes, bool colors)
   : Disk(scratchDirectory)
   , Buckets(scratchDirectory)
+  , Pages(scratchDirectory)
   , CornerBytes(PositionNormalBytes + (colors ? 4 : 0))
   , LastTriangles(LastTriangleSlots)
 {
@@ -101,16 +102,15 @@ std::uint16_t* BucketStore::CornerTable(std::size_t frame) const
 
 BucketStore::PageIndex BucketStore::NewPage()
 {
-  if (!FreePages.empty())
+  if (FreePages != NoPage)
   {
-    const PageIndex page = FreePages.back();
-    FreePages.pop_back();
+    const PageIndex page = FreePages;
+    FreePages = Pages[page].Next;
+    Pages[page].Next = NoPage;
     return page;
   }
-  PageFrame.push_back(NotResident);
-  PageOnDisk.push_back(0);
-  NextPage.push_back(NoPage);
-  return PageIndex(PageFrame.size() - 1);
+  Pages.PushBack(Page());
+  return PageIndex(Pages.Size() - 1);
 }
 
 void BucketStore::FinishWrites()
@@ -123,10 +123,10 @@ void BucketStore::FinishWrites()
   for (const auto& [frame, page] : InFlight.Frames)
   {
     // A page cleared meanwhile no longer maps to this frame: only the frame is freed.
-    if (PageFrame[page] == std::int32_t(frame))
+    if (Pages[page].Frame == std::int32_t(frame))
     {
-      PageFrame[page] = NotResident;
-      PageOnDisk[page] = 1;
+      Pages[page].Frame = NotResident;
+      Pages[page].OnDisk = 1;
     }
     States[frame] = FrameState::Free;
     FramePage[frame] = -1;
@@ -160,7 +160,7 @@ void BucketStore::StartEvictions()
     const PageIndex page = PageIndex(FramePage[frame]);
     if (!FrameDirty[frame])
     {
-      PageFrame[page] = NotResident;
+      Pages[page].Frame = NotResident;
       States[frame] = FrameState::Free;
       FramePage[frame] = -1;
       FreeFrames.push_back(frame);
@@ -214,21 +214,21 @@ std::size_t BucketStore::FreeFrame()
 
 std::size_t BucketStore::Resident(PageIndex page, bool load)
 {
-  if (PageFrame[page] != NotResident && States[std::size_t(PageFrame[page])] == FrameState::Writing)
+  if (Pages[page].Frame != NotResident && States[std::size_t(Pages[page].Frame)] == FrameState::Writing)
   {
     FinishWrites(); // the writer may still be reading the frame: let it finish first
   }
-  if (PageFrame[page] != NotResident)
+  if (Pages[page].Frame != NotResident)
   {
-    return std::size_t(PageFrame[page]);
+    return std::size_t(Pages[page].Frame);
   }
   const std::size_t frame = FreeFrame();
-  if (load && PageOnDisk[page])
+  if (load && Pages[page].OnDisk)
   {
     Disk.ReadAt(std::uint64_t(page) * PageBytes, FrameData(frame), PageBytes);
     Counters.BytesRead += PageBytes;
   }
-  if (!load || !PageOnDisk[page])
+  if (!load || !Pages[page].OnDisk)
   {
     PutU16(FrameData(frame), 0); // a new page: no corners,
     PutU16(FrameData(frame) + 2, 0); // no triangles
@@ -237,7 +237,7 @@ std::size_t BucketStore::Resident(PageIndex page, bool load)
   FramePage[frame] = page;
   FrameDirty[frame] = 0;
   CornersIndexed[frame] = 0;
-  PageFrame[page] = std::int32_t(frame);
+  Pages[page].Frame = std::int32_t(frame);
   return frame;
 }
 
@@ -378,7 +378,7 @@ void BucketStore::Append(BucketIndex bucketIndex, const SoupTriangle& triangle)
   if (lastPage == NoPage || !AddToPage(frame, triangle, bucketIndex))
   {
     const PageIndex page = NewPage();
-    (lastPage == NoPage ? bucket.FirstPage : NextPage[lastPage]) = page;
+    (lastPage == NoPage ? bucket.FirstPage : Pages[lastPage].Next) = page;
     bucket.LastPage = page;
     ForgetLast(bucketIndex); // its numbers were the old page's
     frame = Resident(page, false);
@@ -398,12 +398,12 @@ void BucketStore::Read(BucketIndex bucketIndex, std::vector<SoupTriangle>& out) 
   const Bucket& bucket = Buckets[bucketIndex];
   out.reserve(out.size() + bucket.Count);
   std::vector<unsigned char> buffer;
-  for (PageIndex page = bucket.FirstPage; page != NoPage; page = NextPage[page])
+  for (PageIndex page = bucket.FirstPage; page != NoPage; page = Pages[page].Next)
   {
-    if (PageFrame[page] != NotResident)
+    if (Pages[page].Frame != NotResident)
     {
       // Also for a frame being written: the writer only reads it too.
-      Unpack(FrameData(std::size_t(PageFrame[page])), out);
+      Unpack(FrameData(std::size_t(Pages[page].Frame)), out);
     }
     else
     {
@@ -479,11 +479,10 @@ void BucketStore::Empty(BucketIndex bucketIndex, bool releaseMemory)
   Bucket& bucket = Buckets[bucketIndex];
   for (PageIndex page = bucket.FirstPage, next; page != NoPage; page = next)
   {
-    next = NextPage[page];
-    NextPage[page] = NoPage;
-    if (PageFrame[page] != NotResident)
+    next = Pages[page].Next;
+    if (Pages[page].Frame != NotResident)
     {
-      const std::size_t frame = std::size_t(PageFrame[page]);
+      const std::size_t frame = std::size_t(Pages[page].Frame);
       if (States[frame] == FrameState::Resident)
       {
         States[frame] = FrameState::Free;
@@ -497,15 +496,16 @@ void BucketStore::Empty(BucketIndex bucketIndex, bool releaseMemory)
         }
       }
       // A frame being written is freed when its batch finishes.
-      PageFrame[page] = NotResident;
+      Pages[page].Frame = NotResident;
     }
-    if (PageOnDisk[page])
+    if (Pages[page].OnDisk)
     {
       // Construction empties buckets for good: their disk space goes back at once.
       Disk.Release(std::uint64_t(page) * PageBytes, PageBytes);
     }
-    PageOnDisk[page] = 0;
-    FreePages.push_back(page);
+    Pages[page].OnDisk = 0;
+    Pages[page].Next = FreePages;
+    FreePages = page;
   }
   bucket = Bucket(); // its next append starts a page, which forgets its last triangle
 }

@@ -66,9 +66,13 @@ public:
   /// Empties the bucket for good: as Clear, and its frames' memory goes back to the system.
   void Discard(BucketIndex bucket) { Empty(bucket, true); }
 
-  /// Gives the pages of the bucket table (one record per node of the forest, so it grows with
-  /// the input) back to the system; they come back as they are used.
-  void ReleaseResident() const { Buckets.ReleaseResident(); }
+  /// Gives the memory of the records that grow with the input (one per node of the forest, one
+  /// per page of bucket data) back to the system; they come back as they are used.
+  void ReleaseResident() const
+  {
+    Buckets.ReleaseResident();
+    Pages.ReleaseResident();
+  }
 
   const BucketStoreStats& Stats() const { return Counters; }
   std::size_t PoolPages() const { return FramePage.size(); }
@@ -90,7 +94,7 @@ private:
     }
   };
   static constexpr PageIndex NoPage = ~PageIndex(0);
-  /// 16 bytes: there is one per node of the forest. Its pages form a list (NextPage).
+  /// 16 bytes: there is one per node of the forest. Its pages form a list (Page::Next).
   struct Bucket
   {
     std::uint64_t Count = 0;
@@ -180,12 +184,18 @@ private:
   std::vector<char> FrameDirty, FrameReferenced;
   std::vector<std::size_t> FreeFrames;
   std::size_t ClockHand = 0;
-  // Per page: its frame, or NotResident (then its content, if any, is on disk at its slot);
-  // the next page of its bucket.
-  std::vector<std::int32_t> PageFrame;
-  std::vector<PageIndex> NextPage;
-  std::vector<char> PageOnDisk;
-  std::vector<PageIndex> FreePages;
+  /// One per page of bucket data (a billion triangles fill over a million): its frame, or
+  /// NotResident (then its content, if any, is on disk at its slot), and the next page of its
+  /// bucket, or of the recycled pages.
+  struct Page
+  {
+    std::int32_t Frame = NotResident;
+    PageIndex Next = NoPage;
+    std::uint32_t OnDisk = 0;
+  };
+  ScratchArray<Page> Pages;
+  PageIndex FreePages = NoPage; ///< the first recycled page
+
   WriteBatch InFlight;
   /// 8 MiB of pool at a time; frames below PrefaultedFrames are mapped or being mapped.
   static constexpr std::size_t PrefaultFrames = 512;
