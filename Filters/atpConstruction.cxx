@@ -118,6 +118,7 @@ public:
       {
         const NodeIndex n = FileOrder[std::size_t(made.FirstFileIndex) + i];
         (Forest[n].IsLeaf() ? leaves : inner).push_back(n);
+        Visited();
       }
       std::sort(leaves.begin(), leaves.end());
       std::sort(inner.begin(), inner.end());
@@ -151,6 +152,7 @@ private:
     for (NodeIndex n = 0; n < NodeIndex(Forest.Size()); ++n)
     {
       ++Levels[std::size_t(Forest[n].Id.Level())].Count;
+      Visited();
     }
     std::vector<std::size_t> placed(Levels.size());
     for (std::size_t l = 1; l < Levels.size(); ++l)
@@ -163,6 +165,7 @@ private:
     for (NodeIndex n = 0; n < NodeIndex(Forest.Size()); ++n)
     {
       FileOrder[placed[std::size_t(Forest[n].Id.Level())]++] = n;
+      Visited();
     }
     for (const Level& level : Levels)
     {
@@ -173,14 +176,15 @@ private:
       {
         const NodeIndex n = FileOrder[i];
         keys.push_back({ { CentroidMorton(Forest.Geometry(n)), Forest[n].Id.Bits }, n });
+        Visited();
       }
       std::sort(keys.begin(), keys.end());
       for (std::size_t i = 0; i < keys.size(); ++i)
       {
         FileOrder[first + i] = keys[i].second;
         FileIndex[std::size_t(keys[i].second)] = std::int32_t(first + i);
+        Visited();
       }
-      ReleaseResident();
     }
   }
 
@@ -216,14 +220,22 @@ private:
     Below.ReleaseResident();
   }
 
+  /// Every loop over nodes counts them here: every ReleaseInterval of them, the records per
+  /// node go back (ReleaseResident), whichever loop touched them.
+  void Visited(std::size_t nodes = 1)
+  {
+    NodesVisited += nodes;
+    if (NodesVisited >= NextRelease)
+    {
+      ReleaseResident();
+      NextRelease = NodesVisited + ReleaseInterval;
+    }
+  }
+
   void ReportProgress(std::size_t nodesDone)
   {
     Done += nodesDone;
-    if (Done >= NextRelease)
-    {
-      ReleaseResident();
-      NextRelease = Done + ReleaseInterval;
-    }
+    Visited(nodesDone);
     if (Progress)
     {
       // The last few percent are the file write.
@@ -287,17 +299,19 @@ private:
       {
         std::copy(saturated, saturated + 4, Result(m).SaturatedSphere);
       }
+      Visited(members.size());
     }
   }
 
   /// Nodes of one level grouped by diamond: groups ordered by diamond id, members by TetId.
-  DiamondGroups GroupByDiamond(const std::vector<NodeIndex>& nodes) const
+  DiamondGroups GroupByDiamond(const std::vector<NodeIndex>& nodes)
   {
     std::vector<std::pair<std::pair<std::uint64_t, std::uint64_t>, NodeIndex>> keys;
     keys.reserve(nodes.size());
     for (NodeIndex n : nodes)
     {
       keys.push_back({ { DiamondOf(Forest.Geometry(n)).Bits, Forest[n].Id.Bits }, n });
+      Visited();
     }
     std::sort(keys.begin(), keys.end());
     DiamondGroups groups;
@@ -414,6 +428,7 @@ private:
       level.EncodedFirst = std::min(level.EncodedFirst, r.EncodedOffset);
       level.EncodedEnd = std::max(level.EncodedEnd, r.EncodedOffset + r.EncodedBytes);
       records.push_back(node);
+      Visited();
       if (records.size() == RecordsPerIo || i + 1 == level.Count)
       {
         NodeSpill.WriteAt(NodeSpillEnd, records.data(), records.size() * sizeof(ModelNode));
@@ -498,8 +513,8 @@ private:
   ScratchFile NodeSpill;
   std::uint64_t NodeSpillEnd = 0;
   static constexpr std::size_t RecordsPerIo = 8192;
-  /// Nodes stored between two ReleaseResident: a few thousand diamonds touch a few thousand
-  /// pages, which come back in milliseconds.
+  /// Nodes visited between two ReleaseResident: a few thousand nodes touch at most a few
+  /// thousand pages, which come back in milliseconds.
   static constexpr std::size_t ReleaseInterval = 4096;
   std::vector<Level> Levels;
   ScratchArray<NodeIndex> FileOrder;   ///< per file index: the node
@@ -508,6 +523,7 @@ private:
   ScratchArray<NodeResult> Current; ///< the level being made, in file order
   ScratchArray<NodeResult> Below;   ///< the level below it, read by its diamonds
   std::size_t Done = 0;
+  std::size_t NodesVisited = 0;
   std::size_t NextRelease = ReleaseInterval;
   ConstructionStats Stats;
 };

@@ -113,13 +113,20 @@ public:
     std::fill(this->Data() + old, this->Data() + this->Count, fill);
   }
   void PushBack(const T& value) { this->Resize(this->Count + 1, value); }
-  /// Holds exactly `count` elements, all set to `fill`; the file keeps its size.
+  /// Holds exactly `count` elements, all set to `fill`; the file keeps its size. Filled a slice
+  /// at a time, each slice given back once written: filling costs one slice of resident memory,
+  /// not the array.
   void Assign(std::size_t count, const T& fill)
   {
+    constexpr std::size_t slice = std::max<std::size_t>(1, (std::size_t(4) << 20) / sizeof(T));
     this->Count = 0;
-    this->Resize(count, fill);
+    while (this->Count < count)
+    {
+      const std::size_t first = this->Count;
+      this->Resize(std::min(count, first + slice), fill);
+      ReleaseResidentPages(this->Data() + first, (this->Count - first) * sizeof(T));
+    }
   }
-
   /// Drops the array's pages from the process's resident memory (ReleaseResidentPages); they
   /// keep their contents.
   void ReleaseResident() const { ReleaseResidentPages(this->Data(), this->Count * sizeof(T)); }
