@@ -12,6 +12,8 @@ constexpr std::size_t Group = 256;
 /// stream touches few leaves and the top of the forest in that time, whatever the forest's
 /// size, and takes those pages back in well under a millisecond.
 constexpr std::uint64_t ReleaseInterval = std::uint64_t(1) << 20;
+/// Nodes Stats reads between two releases.
+constexpr std::size_t StatsNodesPerRelease = std::size_t(1) << 16;
 }
 
 Partitioner::Partitioner(const Box& bounds, const PartitionOptions& options)
@@ -104,13 +106,23 @@ PartitionStats Partitioner::Stats() const
   s.TetrahedraSplit = Splits;
   s.Depth = Tetrahedra.Depth();
   s.Buckets = Buckets.Stats();
-  for (const auto leaf : Tetrahedra.Leaves())
+  // Node by node, giving the pages back as it goes: a list of the leaves, or every node's
+  // page at once, would grow with the input.
+  for (std::size_t node = 0; node < Tetrahedra.Size(); ++node)
   {
-    const std::uint64_t n = TriangleCount(leaf);
-    ++s.Leaves;
-    s.NonEmptyLeaves += n > 0;
-    s.LargestLeaf = std::max(s.LargestLeaf, n);
-    s.OverfullLeaves += n > Settings.LeafCapacity;
+    const auto leaf = TetraForest::NodeIndex(node);
+    if (Tetrahedra[leaf].IsLeaf())
+    {
+      const std::uint64_t n = TriangleCount(leaf);
+      ++s.Leaves;
+      s.NonEmptyLeaves += n > 0;
+      s.LargestLeaf = std::max(s.LargestLeaf, n);
+      s.OverfullLeaves += n > Settings.LeafCapacity;
+    }
+    if ((node + 1) % StatsNodesPerRelease == 0)
+    {
+      ReleaseResident();
+    }
   }
   return s;
 }
