@@ -67,8 +67,8 @@ public:
     Buckets.StopAppending();
     ReleaseResident();
   }
-  /// Gives back the pages of the two arrays that grow with the input, the forest and the bucket
-  /// table (one record per tetrahedron each); they come back as they are used. Inserting does
+  /// Gives back the pages of the records that grow with the input (the forest's nodes, the
+  /// bucket table, the bucket page records); they come back as they are used. Inserting does
   /// this every million triangles, and construction as it goes.
   void ReleaseResident() const
   {

@@ -1,6 +1,7 @@
 // Large working memory backed by transparent huge pages where the kernel allows it (its
-// "madvise" mode, as on Debian): the partitioner's bucket pool, and the vectors it indexes at
-// random for every triangle (the forest's nodes, the bucket table). Filling memory 4 KiB page
+// "madvise" mode, as on Debian): the partitioner's bucket pool and its corner lookups (the
+// forest's nodes and the bucket table grow with the input and live in scratch mappings
+// instead, atpScratchArray.h). Filling memory 4 KiB page
 // by page costs a page fault each, about 12 microseconds on virtual machines that shadow the
 // page tables (65,000 of them for a 256 MiB pool), and random access over 4 KiB pages misses
 // the TLB; a 2 MiB page takes one fault and one TLB entry.
@@ -10,8 +11,6 @@
 #include "vtkATPIOModule.h" // export macro
 
 #include <cstddef>
-#include <limits>
-#include <new>
 
 namespace atp
 {
@@ -54,37 +53,6 @@ public:
 private:
   void* Memory = nullptr;
   std::size_t Bytes = 0;
-};
-
-/// An allocator for std::vector that grows large and is indexed at random.
-template <typename T>
-struct HugePageAllocator
-{
-  using value_type = T;
-  HugePageAllocator() = default;
-  template <typename U>
-  HugePageAllocator(const HugePageAllocator<U>&) noexcept
-  {
-  }
-  T* allocate(std::size_t n)
-  {
-    if (n > std::numeric_limits<std::size_t>::max() / sizeof(T))
-    {
-      throw std::bad_alloc();
-    }
-    return static_cast<T*>(AllocateLarge(n * sizeof(T)));
-  }
-  void deallocate(T* memory, std::size_t n) noexcept { FreeLarge(memory, n * sizeof(T)); }
-  template <typename U>
-  bool operator==(const HugePageAllocator<U>&) const noexcept
-  {
-    return true;
-  }
-  template <typename U>
-  bool operator!=(const HugePageAllocator<U>&) const noexcept
-  {
-    return false;
-  }
 };
 
 } // namespace atp

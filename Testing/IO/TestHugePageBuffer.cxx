@@ -137,25 +137,6 @@ TEST(HugePageBuffer, EmptyAndMoved)
   EXPECT_EQ(static_cast<char*>(second.Data())[9], 0);
 }
 
-TEST(HugePageAllocator, VectorsGrowAcrossTheHugePageSize)
-{
-  std::vector<std::uint64_t, atp::HugePageAllocator<std::uint64_t>> values;
-  const std::size_t count = 3 * atp::HugePageBytes / sizeof(std::uint64_t) + 5;
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    values.push_back(i * i);
-  }
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    ASSERT_EQ(values[i], i * i);
-  }
-  EXPECT_EQ(std::uintptr_t(values.data()) % atp::HugePageBytes, 0u);
-  values.resize(10);
-  values.shrink_to_fit(); // back to a small block
-  EXPECT_EQ(values.back(), 81u);
-  EXPECT_THROW(values.reserve(values.max_size()), std::bad_alloc);
-}
-
 TEST(HugePageBuffer, RefusesWhatTheAddressSpaceCannotHold)
 {
   EXPECT_THROW(HugePageBuffer(std::numeric_limits<std::size_t>::max() - 100), std::bad_alloc);
