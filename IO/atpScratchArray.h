@@ -84,12 +84,12 @@ public:
   {
     if (count > this->Capacity)
     {
-      if (count > static_cast<std::size_t>(-1) / sizeof(T))
+      const std::size_t most = static_cast<std::size_t>(-1) / sizeof(T);
+      if (count > most)
       {
         throw std::length_error("ScratchArray: size overflows the address space");
       }
-      const std::size_t capacity =
-        std::min(std::max(count, this->Capacity + this->Capacity / 2), static_cast<std::size_t>(-1) / sizeof(T));
+      const std::size_t capacity = std::min(std::max(count, this->Capacity + this->Capacity / 2), most);
       this->Storage.Grow(capacity * sizeof(T));
       this->Capacity = capacity;
     }
@@ -99,7 +99,8 @@ public:
       const std::size_t stale = std::min(count, this->EverHeld);
       if (stale > this->Count)
       {
-        std::memset(static_cast<void*>(this->Data() + this->Count), 0, (stale - this->Count) * sizeof(T));
+        std::memset(
+          static_cast<void*>(this->Data() + this->Count), 0, (stale - this->Count) * sizeof(T));
       }
       this->Count = count;
       this->EverHeld = std::max(this->EverHeld, count);
