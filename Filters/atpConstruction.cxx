@@ -116,7 +116,7 @@ public:
       std::vector<NodeIndex> leaves, inner;
       for (std::size_t i = 0; i < made.Count; ++i)
       {
-        const NodeIndex n = FileOrder[std::size_t(made.FirstFileIndex) + i];
+        const NodeIndex n = NodeAt(made, i);
         (Forest[n].IsLeaf() ? leaves : inner).push_back(n);
         Visited();
       }
@@ -186,6 +186,12 @@ private:
         Visited();
       }
     }
+  }
+
+  /// The i-th node of a level in file order.
+  NodeIndex NodeAt(const Level& level, std::size_t i) const
+  {
+    return FileOrder[std::size_t(level.FirstFileIndex) + i];
   }
 
   /// The result of a node of the level being made or of the one below it.
@@ -406,7 +412,7 @@ private:
     records.reserve(std::min(level.Count, RecordsPerIo));
     for (std::size_t i = 0; i < level.Count; ++i)
     {
-      const TetraForest::Node& tet = Forest[FileOrder[std::size_t(level.FirstFileIndex) + i]];
+      const TetraForest::Node& tet = Forest[NodeAt(level, i)];
       const NodeResult& r = results[i];
       ModelNode node;
       std::memset(&node, 0, sizeof(node));
