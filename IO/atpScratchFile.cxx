@@ -23,16 +23,26 @@ std::string DefaultDirectory()
 ScratchFile::ScratchFile(const std::string& directory)
   : Directory(directory.empty() ? DefaultDirectory() : directory)
 {
-  std::string name = Directory + "/atp-scratch-XXXXXX";
-  std::vector<char> buffer(name.begin(), name.end());
-  buffer.push_back('\0');
-  Fd = ::mkstemp(buffer.data());
+  // A file that never has a name: a build killed at any point, even between creating a file
+  // and unlinking it, leaves nothing behind. File systems without O_TMPFILE get a named file,
+  // unlinked at once.
+  Fd = ::open(Directory.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
+  if (Fd < 0 && (errno == EOPNOTSUPP || errno == EISDIR || errno == EINVAL))
+  {
+    std::string name = Directory + "/atp-scratch-XXXXXX";
+    std::vector<char> buffer(name.begin(), name.end());
+    buffer.push_back('\0');
+    Fd = ::mkstemp(buffer.data());
+    if (Fd >= 0)
+    {
+      ::unlink(buffer.data());
+    }
+  }
   if (Fd < 0)
   {
     throw std::runtime_error(
       "cannot create a scratch file in " + Directory + ": " + std::strerror(errno));
   }
-  ::unlink(buffer.data());
 }
 
 ScratchFile::ScratchFile(ScratchFile&& other) noexcept

@@ -1,5 +1,6 @@
-// A temporary file for data that does not fit in memory. It is unlinked as soon as it is
-// created, so nothing is left behind however the process ends (crash, SIGKILL, full disk).
+// A temporary file for data that does not fit in memory. It never has a name (O_TMPFILE; where
+// the file system lacks it, it is unlinked as soon as it is created), so nothing is left behind
+// however the process ends (crash, SIGKILL, full disk).
 #ifndef atpScratchFile_h
 #define atpScratchFile_h
 
