@@ -17,7 +17,7 @@ namespace atp
 namespace Quadric
 {
 
-inline std::size_t Size(int attributes)
+constexpr std::size_t Size(int attributes)
 {
   return 11 + 4 * std::size_t(attributes);
 }
@@ -63,29 +63,57 @@ inline void AddField(double* q, int attributes, const double* g, const double* d
   }
 }
 
-/// q += r over n doubles (Size(m), or a longer record holding a quadric).
-inline void Add(double* q, const double* r, std::size_t n)
+/// q += r over n doubles (Size(m), or a longer record holding a quadric). Records never
+/// overlap: restrict lets the compiler add them a vector at a time.
+inline void Add(double* __restrict q, const double* __restrict r, std::size_t n)
 {
-  for (std::size_t i = 0; i < n; ++i)
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4)
+  {
+    q[i] += r[i];
+    q[i + 1] += r[i + 1];
+    q[i + 2] += r[i + 2];
+    q[i + 3] += r[i + 3];
+  }
+  for (; i < n; ++i)
   {
     q[i] += r[i];
   }
 }
 
-/// Q(p, s): the error at position p with attribute values s.
-inline double Evaluate(const double* q, int attributes, const double p[3], const double* s)
+/// Q(p, s) with a fixed attribute count, so that the attribute terms unroll (the simplifier
+/// prices collapses with one of these in its innermost loop).
+template <int Attributes>
+inline double EvaluateFixed(const double* q, const double p[3], const double* s)
 {
   const double x = p[0], y = p[1], z = p[2];
   double e = x * (q[0] * x + 2 * (q[1] * y + q[2] * z + q[6])) + y * (q[3] * y + 2 * (q[4] * z + q[7])) +
     z * (q[5] * z + 2 * q[8]) + q[9];
   const double* G = q + 11;
-  const double* D = G + 3 * attributes;
-  for (int j = 0; j < attributes; ++j)
+  const double* D = G + 3 * Attributes;
+  for (int j = 0; j < Attributes; ++j)
   {
     const double* gj = G + 3 * j;
     e += s[j] * (q[10] * s[j] - 2 * (gj[0] * x + gj[1] * y + gj[2] * z + D[j]));
   }
   return e;
+}
+
+/// Q(p, s): the error at position p with attribute values s (0, 3, 4 or 7 attributes: normals
+/// and colors).
+inline double Evaluate(const double* q, int attributes, const double p[3], const double* s)
+{
+  switch (attributes)
+  {
+    case 0:
+      return EvaluateFixed<0>(q, p, s);
+    case 3:
+      return EvaluateFixed<3>(q, p, s);
+    case 4:
+      return EvaluateFixed<4>(q, p, s);
+    default:
+      return EvaluateFixed<7>(q, p, s);
+  }
 }
 
 } // namespace Quadric

@@ -119,14 +119,46 @@ private:
   /// instead of one around every neighbor.
   void NoteRegionsAround(std::uint32_t v);
   /// The collapse u -> target, which removes a triangle of regionA and one of regionB.
-  Candidate Price(std::uint32_t u, std::uint32_t target, int regionA, int regionB) const;
+  Candidate Price(std::uint32_t u, std::uint32_t target, int regionA, int regionB) const
+  {
+    return Ranked(Cost(Record(u), target), target, regionA, regionB);
+  }
+  /// u's quadric (record) at the target, per unit of its planes' weight.
+  [[gnu::always_inline]] double Cost(const double* record, std::uint32_t target) const
+  {
+    return Quadric::Evaluate(record, Attributes, Position(target), AttributesOf(target)) /
+      std::max(record[RecordSize - 1], 1e-300);
+  }
+  /// Rank 0 when the collapse removes triangles of over-quota regions only, 1 for one of them,
+  /// 2 for none.
+  int RankOf(int regionA, int regionB) const { return 2 - int(OverQuota(regionA)) - int(OverQuota(regionB)); }
+  Candidate Ranked(double cost, std::uint32_t target, int regionA, int regionB) const
+  {
+    Candidate candidate;
+    candidate.Cost = cost;
+    candidate.Target = target;
+    candidate.Rank = RankOf(regionA, regionB);
+    candidate.Region = OverQuota(regionA) || !OverQuota(regionB) ? regionA : regionB;
+    return candidate;
+  }
+  /// Calls consider(target, regionA, regionB) for every collapse u may make: onto any neighbor
+  /// for a Free vertex, along the original boundary for a Boundary one. Fan must hold u's fan.
+  template <typename Consider>
+  void ForEachCollapse(std::uint32_t u, Consider consider);
   void Queue(std::uint32_t u, const Candidate& candidate);
   /// Change of the total excess over the quotas if u moves onto v; fills MovedRegions.
   std::int64_t ExcessChange(std::uint32_t u, std::uint32_t v);
   void Collapse(std::uint32_t u, std::uint32_t v);
   void FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, std::uint32_t w);
   int RegionOf(const double point[3], int likely) const;
-  bool OverQuota(int r) const { return Counts[std::size_t(r)] > std::int64_t(Quotas[std::size_t(r)]); }
+  bool OverQuota(int r) const { return Over[std::size_t(r)] != 0; }
+  /// Adds delta to region r's live triangle count, keeping its Over flag current.
+  void CountTriangles(int r, std::int64_t delta)
+  {
+    const std::size_t i = std::size_t(r);
+    Counts[i] += delta;
+    Over[i] = Counts[i] > std::int64_t(Quotas[i]);
+  }
   /// Corner c (3 * triangle + k): its vertex, and the next corner of that vertex's fan.
   std::uint32_t& VertexAt(std::uint32_t c) { return Faces[c / 3].V[c % 3]; }
   std::uint32_t& FanNext(std::uint32_t c) { return Faces[c / 3].Next[c % 3]; }
@@ -185,6 +217,7 @@ private:
   std::vector<Candidate> Best; // per vertex: its queued collapse
   CollapseQueues Waiting; // per region: the vertices whose collapse removes its triangles
   std::vector<std::int64_t> Counts;           // live triangles per region
+  std::vector<std::uint8_t> Over;             // per region: Counts over its quota
   std::int64_t Excess = 0;                    // sum over regions of max(0, count - quota)
   /// Collapses that would also remove triangles of regions within their quotas wait here, and
   /// are taken only when the over-quota regions have nothing else left (Relaxed).
@@ -287,6 +320,7 @@ Simplifier::Simplifier(const PatchMesh& mesh, int regionCount, const RegionFunct
     RegionPreceding.assign(VertexCount, 0);
   }
   Counts.assign(std::size_t(regionCount), 0);
+  Over.assign(std::size_t(regionCount), 0);
   Delta.assign(std::size_t(regionCount), 0);
 }
 
@@ -335,7 +369,7 @@ void Simplifier::AssignRegions()
     }
     if (RegionCount == 1)
     {
-      ++Counts[0];
+      CountTriangles(0, 1);
       continue;
     }
     double centroid[3] = { 0, 0, 0 };
@@ -352,7 +386,7 @@ void Simplifier::AssignRegions()
     }
     // Triangles come patch by patch: mostly in the previous one's region.
     Faces[t].Region = RegionOf(centroid, t > 0 ? Faces[t - 1].Region : 0);
-    ++Counts[std::size_t(Faces[t].Region)];
+    CountTriangles(Faces[t].Region, 1);
   }
   for (int r = 0; r < RegionCount; ++r)
   {
@@ -467,7 +501,7 @@ void Simplifier::BuildQuadrics()
   const std::size_t size = Quadric::Size(Attributes);
   RecordSize = size + 1;
   Records.assign(RecordSize * VertexCount, 0.0);
-  std::vector<double> q(RecordSize);
+  double q[Quadric::Size(MaxAttributes) + 1];
   for (std::size_t t = 0; t < TriangleCount; ++t)
   {
     if (Faces[t].Removed)
@@ -494,8 +528,8 @@ void Simplifier::BuildQuadrics()
 
     // Hoppe's linear attribute field over the triangle: g.p + d equals the attribute at the
     // corners, with g in the triangle's plane.
-    std::fill(q.begin(), q.end(), 0.0);
-    Quadric::AddPlane(q.data(), n, d, area);
+    std::fill_n(q, RecordSize, 0.0);
+    Quadric::AddPlane(q, n, d, area);
     q[size] = area;
     if (Attributes > 0)
     {
@@ -516,11 +550,11 @@ void Simplifier::BuildQuadrics()
         }
         offset[j] = s0[j] - Dot(g + 3 * j, p0);
       }
-      Quadric::AddField(q.data(), Attributes, g, offset, area);
+      Quadric::AddField(q, Attributes, g, offset, area);
     }
     for (int k = 0; k < 3; ++k)
     {
-      Quadric::Add(Record(tri[k]), q.data(), RecordSize);
+      Quadric::Add(Record(tri[k]), q, RecordSize);
     }
 
     for (int k = 0; k < 3; ++k)
@@ -673,49 +707,15 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
   return true;
 }
 
-Candidate Simplifier::Price(std::uint32_t u, std::uint32_t target, int regionA, int regionB) const
-{
-  const double* p = Position(target);
-  Candidate candidate;
-  const double* record = Record(u);
-  candidate.Cost = Quadric::Evaluate(record, Attributes, p, AttributesOf(target)) /
-    std::max(record[RecordSize - 1], 1e-300);
-  candidate.Target = target;
-  candidate.Rank = 2 - int(OverQuota(regionA)) - int(OverQuota(regionB));
-  candidate.Region = OverQuota(regionA) || !OverQuota(regionB) ? regionA : regionB;
-  return candidate;
-}
-
 void Simplifier::Queue(std::uint32_t u, const Candidate& candidate)
 {
   Best[u] = candidate;
   Waiting.Set(u, std::size_t(candidate.Region), candidate.Cost);
 }
 
-// Finds u's cheapest collapse, preferring those that remove triangles of regions over their
-// quotas only, and queues it in such a region's queue.
-void Simplifier::Evaluate(std::uint32_t u, bool checkLegal)
+template <typename Consider>
+void Simplifier::ForEachCollapse(std::uint32_t u, Consider consider)
 {
-  if (Kind[u] != VertexKind::Free && Kind[u] != VertexKind::Boundary)
-  {
-    return;
-  }
-  Best[u] = Candidate();
-  GatherFan(u, Fan);
-  // Without legality checks only the cheapest matters: no list to build.
-  Candidates.clear();
-  Candidate cheapest;
-  const auto consider = [&](std::uint32_t target, int regionA, int regionB) {
-    const Candidate candidate = Price(u, target, regionA, regionB);
-    if (checkLegal)
-    {
-      Candidates.push_back(candidate);
-    }
-    else if (cheapest.Target == None || Before(candidate, cheapest))
-    {
-      cheapest = candidate;
-    }
-  };
   if (Kind[u] == VertexKind::Free)
   {
     // Each neighbor is the next corner of one triangle and the previous corner of another:
@@ -734,30 +734,77 @@ void Simplifier::Evaluate(std::uint32_t u, bool checkLegal)
       const int other = MarkU[x] == StampU ? Faces[SlotU[x]].Region : Faces[t].Region;
       consider(x, Faces[t].Region, other);
     }
+    return;
   }
-  else
+  for (std::uint32_t c : Fan)
   {
-    for (std::uint32_t c : Fan)
+    const std::uint32_t t = c / 3;
+    const int k = int(c % 3);
+    if (Faces[t].Bits & (1u << k))
     {
-      const std::uint32_t t = c / 3;
-      const int k = int(c % 3);
-      if (Faces[t].Bits & (1u << k))
+      consider(Faces[t].V[NextCorner(k)], Faces[t].Region, Faces[t].Region);
+    }
+    if (Faces[t].Bits & (1u << PrevCorner(k)))
+    {
+      consider(Faces[t].V[PrevCorner(k)], Faces[t].Region, Faces[t].Region);
+    }
+  }
+}
+
+// Finds u's cheapest collapse, preferring those that remove triangles of regions over their
+// quotas only, and queues it in such a region's queue.
+void Simplifier::Evaluate(std::uint32_t u, bool checkLegal)
+{
+  if (Kind[u] != VertexKind::Free && Kind[u] != VertexKind::Boundary)
+  {
+    return;
+  }
+  Best[u] = Candidate();
+  GatherFan(u, Fan);
+  const double* record = Record(u);
+  Candidate cheapest;
+  if (checkLegal)
+  {
+    Candidates.clear();
+    ForEachCollapse(u, [&](std::uint32_t target, int regionA, int regionB) {
+      Candidates.push_back(Ranked(Cost(record, target), target, regionA, regionB));
+    });
+    std::sort(Candidates.begin(), Candidates.end(), Before);
+    for (const Candidate& candidate : Candidates)
+    {
+      if (CanCollapse(u, candidate.Target))
       {
-        consider(Faces[t].V[NextCorner(k)], Faces[t].Region, Faces[t].Region);
-      }
-      if (Faces[t].Bits & (1u << PrevCorner(k)))
-      {
-        consider(Faces[t].V[PrevCorner(k)], Faces[t].Region, Faces[t].Region);
+        cheapest = candidate;
+        break;
       }
     }
   }
-  std::sort(Candidates.begin(), Candidates.end(), Before);
-  for (const Candidate& candidate : Candidates)
+  else
   {
-    if (CanCollapse(u, candidate.Target))
+    // Only the cheapest matters: a target of a worse rank than the best so far is not priced.
+    int rank = 3;
+    double cost = 0;
+    std::uint32_t target = None;
+    int regions[2] = { 0, 0 };
+    ForEachCollapse(u, [&](std::uint32_t x, int regionA, int regionB) {
+      const int xRank = RankOf(regionA, regionB);
+      if (xRank > rank)
+      {
+        return;
+      }
+      const double xCost = Cost(record, x);
+      if (xRank < rank || xCost < cost || (xCost == cost && x < target))
+      {
+        rank = xRank;
+        cost = xCost;
+        target = x;
+        regions[0] = regionA;
+        regions[1] = regionB;
+      }
+    });
+    if (target != None)
     {
-      cheapest = candidate;
-      break;
+      cheapest = Ranked(cost, target, regions[0], regions[1]);
     }
   }
   if (cheapest.Target != None)
@@ -917,7 +964,7 @@ void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
   {
     const std::uint32_t c = Fan[i];
     const std::uint32_t t = c / 3;
-    --Counts[std::size_t(Faces[t].Region)];
+    CountTriangles(Faces[t].Region, -1);
     if (MovedRegions[i] < 0)
     {
       Faces[t].Removed = 1;
@@ -925,7 +972,7 @@ void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
     }
     VertexAt(c) = v;
     Faces[t].Region = MovedRegions[i];
-    ++Counts[std::size_t(MovedRegions[i])];
+    CountTriangles(MovedRegions[i], 1);
     FanNext(c) = head;
     head = c;
   }
