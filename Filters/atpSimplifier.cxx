@@ -77,21 +77,28 @@ inline double Dot(const double* a, const double* b)
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-/// A triangle of the working mesh with all that a walk around a vertex reads from it, so that
-/// each step of the walk touches one record (half a cache line): its corners, per corner the
-/// next corner of that vertex's fan, its region and open-edge bits, and whether it is gone.
-struct alignas(32) Face
+/// A triangle of the working mesh with all that a walk around a vertex reads from it: its
+/// corners, its region and open-edge bits, and whether it is gone.
+struct Face
 {
   std::uint32_t V[3];
-  std::uint32_t Next[3] = { None, None, None };
   int Region = 0;
   std::uint8_t Bits = 0; ///< BoundaryEdges: bit k for the edge from corner k to k + 1
   std::uint8_t Removed = 0;
 };
 
-/// One call's state. Vertex fans are singly linked lists of corners (corner = 3 * triangle + k)
-/// that drop removed triangles lazily as they are walked; a collapse splices the moving vertex's
-/// list into the target's, so nothing is allocated per collapse.
+/// Where a vertex's fan lies in the corner pool.
+struct FanSlice
+{
+  std::uint32_t Start = 0;
+  std::uint32_t Count = 0;
+};
+
+/// One call's state. A vertex's fan is a run of corners (corner = 3 * triangle + k) in one pool,
+/// in the order of a walk around it; removed triangles drop out lazily as fans are gathered. A
+/// collapse writes the target's new fan at the end of the pool. Runs rather than lists linked
+/// through the triangles: a walk's reads of the triangles no longer wait on each other, which
+/// matters once a diamond's mesh outgrows the cache.
 class Simplifier
 {
 public:
@@ -159,10 +166,8 @@ private:
     Counts[i] += delta;
     Over[i] = Counts[i] > std::int64_t(Quotas[i]);
   }
-  /// Corner c (3 * triangle + k): its vertex, and the next corner of that vertex's fan.
+  /// Corner c (3 * triangle + k): its vertex.
   std::uint32_t& VertexAt(std::uint32_t c) { return Faces[c / 3].V[c % 3]; }
-  std::uint32_t& FanNext(std::uint32_t c) { return Faces[c / 3].Next[c % 3]; }
-  std::uint32_t FanNext(std::uint32_t c) const { return Faces[c / 3].Next[c % 3]; }
   bool Contains(std::uint32_t t, std::uint32_t v) const
   {
     return Faces[t].V[0] == v || Faces[t].V[1] == v || Faces[t].V[2] == v;
@@ -171,8 +176,10 @@ private:
   template <typename Visit>
   void ForEachCorner(std::uint32_t v, Visit visit) const
   {
-    for (std::uint32_t c = FirstCorner[v]; c != None; c = FanNext(c))
+    const std::uint32_t* corners = Corners.data() + Fans[v].Start;
+    for (std::uint32_t i = 0; i < Fans[v].Count; ++i)
     {
+      const std::uint32_t c = corners[i];
       if (!Faces[c / 3].Removed)
       {
         visit(c / 3, int(c % 3));
@@ -197,7 +204,8 @@ private:
   const std::size_t TriangleCount;
 
   std::vector<Face> Faces;                // the working mesh
-  std::vector<std::uint32_t> FirstCorner; // per vertex: the head of its fan
+  std::vector<std::uint32_t> Corners;      // the fans, run after run
+  std::vector<FanSlice> Fans;              // per vertex: its run in Corners
 
   double Origin[3] = { 0, 0, 0 };
   double Scale = 1; // bounding box diagonal: positions are normalized by it
@@ -344,18 +352,37 @@ int Simplifier::EdgeBit(std::uint32_t t, std::uint32_t a, std::uint32_t b) const
 void Simplifier::LinkCorners()
 {
   // Triangles with a repeated corner are degenerate: they take no part.
-  FirstCorner.assign(VertexCount, None);
-  for (std::size_t c = 3 * TriangleCount; c-- > 0;)
+  Fans.assign(VertexCount, FanSlice());
+  for (std::size_t t = 0; t < TriangleCount; ++t)
   {
-    const std::size_t t = c / 3;
     const std::uint32_t* tri = Faces[t].V;
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0])
     {
       Faces[t].Removed = 1;
       continue;
     }
-    FanNext(std::uint32_t(c)) = FirstCorner[VertexAt(std::uint32_t(c))];
-    FirstCorner[VertexAt(std::uint32_t(c))] = std::uint32_t(c);
+    for (int k = 0; k < 3; ++k)
+    {
+      ++Fans[tri[k]].Count;
+    }
+  }
+  std::uint32_t start = 0;
+  for (FanSlice& fan : Fans)
+  {
+    fan.Start = start;
+    start += fan.Count;
+    fan.Count = 0;
+  }
+  // Collapses append fans: room for about as many corners again.
+  Corners.reserve(2 * std::size_t(start));
+  Corners.resize(start);
+  for (std::uint32_t c = 0; c < 3 * TriangleCount; ++c)
+  {
+    if (!Faces[c / 3].Removed)
+    {
+      FanSlice& fan = Fans[VertexAt(c)];
+      Corners[fan.Start + fan.Count++] = c;
+    }
   }
 }
 
@@ -397,18 +424,19 @@ void Simplifier::AssignRegions()
 void Simplifier::GatherFan(std::uint32_t u, std::vector<std::uint32_t>& fan)
 {
   fan.clear();
-  std::uint32_t* link = &FirstCorner[u];
-  while (*link != None)
+  FanSlice& run = Fans[u];
+  std::uint32_t* corners = Corners.data() + run.Start;
+  std::uint32_t live = 0;
+  for (std::uint32_t i = 0; i < run.Count; ++i)
   {
-    const std::uint32_t c = *link;
-    if (Faces[c / 3].Removed)
+    const std::uint32_t c = corners[i];
+    if (!Faces[c / 3].Removed)
     {
-      *link = FanNext(c);
-      continue;
+      corners[live++] = c;
+      fan.push_back(c);
     }
-    fan.push_back(c);
-    link = &FanNext(c);
   }
+  run.Count = live;
 }
 
 // A vertex may move only if its fan is one consistently oriented disk (Free) or half-disk whose
@@ -695,13 +723,13 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
   if (movesPocket)
   {
     // A moved triangle becomes (v, a, b) with a, b the opposite corners: it must not exist yet.
-    for (std::uint32_t c = FirstCorner[v]; c != None; c = FanNext(c))
+    bool exists = false;
+    ForEachCorner(v, [&](std::uint32_t t, int) {
+      exists = exists || (!Contains(t, u) && Contains(t, opposite[0]) && Contains(t, opposite[1]));
+    });
+    if (exists)
     {
-      const std::uint32_t t = c / 3;
-      if (!Faces[t].Removed && !Contains(t, u) && Contains(t, opposite[0]) && Contains(t, opposite[1]))
-      {
-        return false;
-      }
+      return false;
     }
   }
   return true;
@@ -928,14 +956,12 @@ void Simplifier::FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, 
       acrossWU = s;
     }
   }
-  for (std::uint32_t c = FirstCorner[v]; c != None; c = FanNext(c))
-  {
-    const std::uint32_t s = c / 3;
-    if (s != t && !Faces[s].Removed && !Contains(s, u) && Contains(s, w))
+  ForEachCorner(v, [&](std::uint32_t s, int) {
+    if (s != t && !Contains(s, u) && Contains(s, w))
     {
       acrossVW = s;
     }
-  }
+  });
   if (acrossWU != None && acrossVW == None && openVW)
   {
     Faces[acrossWU].Bits |= std::uint8_t(1u << EdgeBit(acrossWU, u, w));
@@ -959,8 +985,7 @@ void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
       FixOpenEdge(t, u, v, w);
     }
   }
-  std::uint32_t head = FirstCorner[v];
-  for (std::size_t i = Fan.size(); i-- > 0;)
+  for (std::size_t i = 0; i < Fan.size(); ++i)
   {
     const std::uint32_t c = Fan[i];
     const std::uint32_t t = c / 3;
@@ -973,11 +998,27 @@ void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
     VertexAt(c) = v;
     Faces[t].Region = MovedRegions[i];
     CountTriangles(MovedRegions[i], 1);
-    FanNext(c) = head;
-    head = c;
   }
-  FirstCorner[v] = head;
-  FirstCorner[u] = None;
+  // v's new fan: u's moved corners, then v's own.
+  const std::uint32_t start = std::uint32_t(Corners.size());
+  for (std::uint32_t c : Fan)
+  {
+    if (!Faces[c / 3].Removed)
+    {
+      Corners.push_back(c);
+    }
+  }
+  const FanSlice own = Fans[v];
+  for (std::uint32_t i = own.Start; i < own.Start + own.Count; ++i)
+  {
+    const std::uint32_t c = Corners[i];
+    if (!Faces[c / 3].Removed)
+    {
+      Corners.push_back(c);
+    }
+  }
+  Fans[v] = FanSlice{ start, std::uint32_t(Corners.size()) - start };
+  Fans[u] = FanSlice();
   Kind[u] = VertexKind::Removed;
   Best[u] = Candidate();
 
@@ -1073,6 +1114,13 @@ SimplifyResult Simplifier::Run()
           Neighbors.push_back(x);
         }
       }
+    }
+    // The offers below read each neighbor's record and queued collapse: start the loads now,
+    // so that they overlap (large diamonds do not fit the cache, and the offers are serial).
+    for (std::uint32_t x : Neighbors)
+    {
+      __builtin_prefetch(Record(x));
+      __builtin_prefetch(&Best[x]);
     }
     Collapse(u, v);
     Excess += change;

@@ -254,6 +254,11 @@ struct EdgesByStart
     }
   }
 
+  /// Whether a triangle holds the directed edge a->b.
+  bool Has(std::uint32_t a, std::uint32_t b) const
+  {
+    return std::find(End.begin() + First[a], End.begin() + First[a + 1], b) != End.begin() + First[a + 1];
+  }
   /// How many triangles hold the directed edge a->b.
   std::size_t Count(std::uint32_t a, std::uint32_t b) const
   {
@@ -273,7 +278,8 @@ std::vector<bool> BorderVertices(const std::vector<std::uint32_t>& indices, std:
     for (std::uint32_t e = edges.First[a]; e < edges.First[a + 1]; ++e)
     {
       const std::uint32_t b = edges.End[e];
-      if (edges.Count(a, b) + edges.Count(b, a) == 1)
+      // Used once in all: not the other way (most edges stop at that look), and once this way.
+      if (!edges.Has(b, a) && edges.Count(a, b) == 1)
       {
         border[a] = true;
         border[b] = true;
