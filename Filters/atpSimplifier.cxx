@@ -156,6 +156,10 @@ private:
   /// Change of the total excess over the quotas if u moves onto v; fills MovedRegions.
   std::int64_t ExcessChange(std::uint32_t u, std::uint32_t v);
   void Collapse(std::uint32_t u, std::uint32_t v);
+  /// Rewrites the pool with each fan's live corners only, with room for `extra` more and as
+  /// many again: what collapses leave behind is reclaimed, so a vertex that keeps absorbing
+  /// its neighbors (its whole fan written anew each time) cannot grow the pool without bound.
+  void CompactCorners(std::size_t extra);
   void FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, std::uint32_t w);
   int RegionOf(const double point[3], int likely) const;
   bool OverQuota(int r) const { return Over[std::size_t(r)] != 0; }
@@ -972,6 +976,30 @@ void Simplifier::FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, 
   }
 }
 
+void Simplifier::CompactCorners(std::size_t extra)
+{
+  std::size_t held = extra;
+  for (const FanSlice& fan : Fans)
+  {
+    held += fan.Count;
+  }
+  std::vector<std::uint32_t> compact;
+  compact.reserve(2 * held);
+  for (FanSlice& fan : Fans)
+  {
+    const std::uint32_t start = std::uint32_t(compact.size());
+    for (std::uint32_t i = fan.Start; i < fan.Start + fan.Count; ++i)
+    {
+      if (!Faces[Corners[i] / 3].Removed)
+      {
+        compact.push_back(Corners[i]);
+      }
+    }
+    fan = FanSlice{ start, std::uint32_t(compact.size()) - start };
+  }
+  Corners.swap(compact);
+}
+
 // Moves u onto v; Fan holds u's fan and MovedRegions the new region of each of its triangles.
 void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
 {
@@ -1000,6 +1028,10 @@ void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
     CountTriangles(MovedRegions[i], 1);
   }
   // v's new fan: u's moved corners, then v's own.
+  if (Corners.size() + Fan.size() + Fans[v].Count > Corners.capacity())
+  {
+    CompactCorners(Fan.size() + Fans[v].Count);
+  }
   const std::uint32_t start = std::uint32_t(Corners.size());
   for (std::uint32_t c : Fan)
   {

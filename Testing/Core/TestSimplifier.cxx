@@ -353,6 +353,56 @@ TEST(Simplifier, UnreachableQuotaWhenEverythingIsLocked)
   EXPECT_EQ(result.Error, 0.0);
 }
 
+/// A flat disk of `rings` rings of `spokes` vertices around a center (vertex 0), its rim
+/// diamond-external.
+PatchMesh Web(int spokes, int rings)
+{
+  PatchMesh mesh;
+  mesh.Positions = { 0.f, 0.f, 0.f };
+  for (int r = 1; r <= rings; ++r)
+  {
+    for (int i = 0; i < spokes; ++i)
+    {
+      const double angle = 2 * M_PI * i / spokes;
+      mesh.Positions.insert(mesh.Positions.end(), { float(r * std::cos(angle)), float(r * std::sin(angle)), 0.f });
+    }
+  }
+  const auto at = [spokes](int r, int i) { return r == 0 ? 0u : std::uint32_t(1 + (r - 1) * spokes + i % spokes); };
+  for (int i = 0; i < spokes; ++i)
+  {
+    mesh.Indices.insert(mesh.Indices.end(), { 0u, at(1, i), at(1, i + 1) });
+  }
+  for (int r = 1; r < rings; ++r)
+  {
+    for (int i = 0; i < spokes; ++i)
+    {
+      mesh.Indices.insert(mesh.Indices.end(), { at(r, i), at(r + 1, i), at(r + 1, i + 1) });
+      mesh.Indices.insert(mesh.Indices.end(), { at(r, i), at(r + 1, i + 1), at(r, i + 1) });
+    }
+  }
+  ComputeNormals(mesh);
+  MarkOpenEdges(mesh, false);
+  return mesh;
+}
+
+// Down to an eighth: every collapse writes its target's fan anew at the end of the fan pool,
+// which is compacted several times along the way (about 18 corners written per collapse here).
+TEST(Simplifier, DeepSimplificationKeepsADiskAndItsRim)
+{
+  const PatchMesh mesh = Web(256, 24);
+  const std::uint32_t quota = std::uint32_t(mesh.TriangleCount() / 8);
+  const SimplifyResult result = Simplify(mesh, 1, OneRegion(), { quota });
+  EXPECT_TRUE(result.QuotasMet);
+  EXPECT_LE(TriangleTotal(result), quota);
+  EXPECT_GT(result.Collapses, 4u * 256u);
+  const PatchMesh out = Joined(result);
+  // Still one disk (Euler characteristic 1) whose only open edges are the whole locked rim.
+  EXPECT_EQ(EulerCharacteristic(out), 1);
+  EXPECT_EQ(OpenEdges(out).size(), 256u);
+  const SimplifyResult again = Simplify(mesh, 1, OneRegion(), { quota });
+  EXPECT_EQ(again.Regions[0].Indices, result.Regions[0].Indices);
+}
+
 TEST(Simplifier, NoFlippedOrDegenerateTrianglesAndExactVertices)
 {
   const PatchMesh mesh = BumpyTorus(96, 48);
