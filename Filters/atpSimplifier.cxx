@@ -168,7 +168,9 @@ private:
   {
     const std::size_t i = std::size_t(r);
     Counts[i] += delta;
-    Over[i] = Counts[i] > std::int64_t(Quotas[i]);
+    const bool over = Counts[i] > std::int64_t(Quotas[i]);
+    RegionsOver += std::size_t(over) - std::size_t(Over[i]);
+    Over[i] = over;
   }
   /// Corner c (3 * triangle + k): its vertex.
   std::uint32_t& VertexAt(std::uint32_t c) { return Faces[c / 3].V[c % 3]; }
@@ -230,6 +232,7 @@ private:
   CollapseQueues Waiting; // per region: the vertices whose collapse removes its triangles
   std::vector<std::int64_t> Counts;           // live triangles per region
   std::vector<std::uint8_t> Over;             // per region: Counts over its quota
+  std::size_t RegionsOver = 0;                // regions over their quotas
   std::int64_t Excess = 0;                    // sum over regions of max(0, count - quota)
   /// Collapses that would also remove triangles of regions within their quotas wait here, and
   /// are taken only when the over-quota regions have nothing else left (Relaxed).
@@ -751,9 +754,12 @@ void Simplifier::ForEachCollapse(std::uint32_t u, Consider consider)
   if (Kind[u] == VertexKind::Free)
   {
     // Each neighbor is the next corner of one triangle and the previous corner of another:
-    // the two triangles the collapse removes (their regions matter only with several).
+    // the two triangles the collapse removes. The second's region matters only with several
+    // regions, not all over their quotas: otherwise every collapse ranks first and waits in
+    // the first triangle's region (Ranked), whatever the second's.
     ++StampU;
-    for (std::size_t i = 0; RegionCount > 1 && i < Fan.size(); ++i)
+    const bool ranksDiffer = RegionCount > 1 && RegionsOver < std::size_t(RegionCount);
+    for (std::size_t i = 0; ranksDiffer && i < Fan.size(); ++i)
     {
       const std::uint32_t t = Fan[i] / 3;
       MarkU[Faces[t].V[PrevCorner(int(Fan[i] % 3))]] = StampU;
