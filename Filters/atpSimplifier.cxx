@@ -280,10 +280,13 @@ Simplifier::Simplifier(const PatchMesh& mesh, int regionCount, const RegionFunct
 
   double lo[3] = { 1e300, 1e300, 1e300 };
   double hi[3] = { -1e300, -1e300, -1e300 };
-  for (std::size_t i = 0; i < 3 * VertexCount; ++i)
+  for (std::size_t v = 0; v < VertexCount; ++v)
   {
-    lo[i % 3] = std::min(lo[i % 3], double(mesh.Positions[i]));
-    hi[i % 3] = std::max(hi[i % 3], double(mesh.Positions[i]));
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      lo[a] = std::min(lo[a], double(mesh.Positions[3 * v + a]));
+      hi[a] = std::max(hi[a], double(mesh.Positions[3 * v + a]));
+    }
   }
   if (VertexCount > 0)
   {
@@ -439,7 +442,11 @@ void Simplifier::GatherFan(std::uint32_t u, std::vector<std::uint32_t>& fan)
     const std::uint32_t c = corners[i];
     if (!Faces[c / 3].Removed)
     {
-      corners[live++] = c;
+      if (live != i)
+      {
+        corners[live] = c; // closes the gap of a removed corner
+      }
+      ++live;
       fan.push_back(c);
     }
   }
