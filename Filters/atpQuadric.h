@@ -81,17 +81,19 @@ inline void Add(double* __restrict q, const double* __restrict r, std::size_t n)
   }
 }
 
-/// Q(p, s) with a fixed attribute count, so that the attribute terms unroll (the simplifier
-/// prices collapses with one of these in its innermost loop).
-template <int Attributes>
-inline double EvaluateFixed(const double* q, const double p[3], const double* s)
+/// Q(p, s): the error at position p with attribute values s. Fixed, when not negative, is the
+/// attribute count as a constant, so that the attribute terms unroll (the simplifier prices
+/// collapses in its innermost loop); otherwise `attributes` counts them.
+template <int Fixed>
+inline double EvaluateWith(const double* q, int attributes, const double p[3], const double* s)
 {
+  const int count = Fixed >= 0 ? Fixed : attributes;
   const double x = p[0], y = p[1], z = p[2];
   double e = x * (q[0] * x + 2 * (q[1] * y + q[2] * z + q[6])) + y * (q[3] * y + 2 * (q[4] * z + q[7])) +
     z * (q[5] * z + 2 * q[8]) + q[9];
   const double* G = q + 11;
-  const double* D = G + 3 * Attributes;
-  for (int j = 0; j < Attributes; ++j)
+  const double* D = G + 3 * count;
+  for (int j = 0; j < count; ++j)
   {
     const double* gj = G + 3 * j;
     e += s[j] * (q[10] * s[j] - 2 * (gj[0] * x + gj[1] * y + gj[2] * z + D[j]));
@@ -99,20 +101,21 @@ inline double EvaluateFixed(const double* q, const double p[3], const double* s)
   return e;
 }
 
-/// Q(p, s): the error at position p with attribute values s (0, 3, 4 or 7 attributes: normals
-/// and colors).
+/// Q(p, s) for any attribute count, the simplifier's (nothing, normals, colors, both) unrolled.
 inline double Evaluate(const double* q, int attributes, const double p[3], const double* s)
 {
   switch (attributes)
   {
     case 0:
-      return EvaluateFixed<0>(q, p, s);
+      return EvaluateWith<0>(q, attributes, p, s);
     case 3:
-      return EvaluateFixed<3>(q, p, s);
+      return EvaluateWith<3>(q, attributes, p, s);
     case 4:
-      return EvaluateFixed<4>(q, p, s);
+      return EvaluateWith<4>(q, attributes, p, s);
+    case 7:
+      return EvaluateWith<7>(q, attributes, p, s);
     default:
-      return EvaluateFixed<7>(q, p, s);
+      return EvaluateWith<-1>(q, attributes, p, s);
   }
 }
 

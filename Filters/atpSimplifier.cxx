@@ -160,6 +160,19 @@ private:
   /// many again: what collapses leave behind is reclaimed, so a vertex that keeps absorbing
   /// its neighbors (its whole fan written anew each time) cannot grow the pool without bound.
   void CompactCorners(std::size_t extra);
+  /// Appends the corners of `run` whose triangles are live to `out` (with room for them when
+  /// `out` is the pool itself, which then must not reallocate under the reads).
+  void AppendLiveCorners(FanSlice run, std::vector<std::uint32_t>& out) const
+  {
+    for (std::uint32_t i = run.Start; i < run.Start + run.Count; ++i)
+    {
+      const std::uint32_t c = Corners[i];
+      if (!Faces[c / 3].Removed)
+      {
+        out.push_back(c);
+      }
+    }
+  }
   void FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, std::uint32_t w);
   int RegionOf(const double point[3], int likely) const;
   bool OverQuota(int r) const { return Over[std::size_t(r)] != 0; }
@@ -1001,13 +1014,7 @@ void Simplifier::CompactCorners(std::size_t extra)
   for (FanSlice& fan : Fans)
   {
     const std::uint32_t start = std::uint32_t(compact.size());
-    for (std::uint32_t i = fan.Start; i < fan.Start + fan.Count; ++i)
-    {
-      if (!Faces[Corners[i] / 3].Removed)
-      {
-        compact.push_back(Corners[i]);
-      }
-    }
+    AppendLiveCorners(fan, compact);
     fan = FanSlice{ start, std::uint32_t(compact.size()) - start };
   }
   Corners.swap(compact);
@@ -1053,15 +1060,7 @@ void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
       Corners.push_back(c);
     }
   }
-  const FanSlice own = Fans[v];
-  for (std::uint32_t i = own.Start; i < own.Start + own.Count; ++i)
-  {
-    const std::uint32_t c = Corners[i];
-    if (!Faces[c / 3].Removed)
-    {
-      Corners.push_back(c);
-    }
-  }
+  AppendLiveCorners(Fans[v], Corners);
   Fans[v] = FanSlice{ start, std::uint32_t(Corners.size()) - start };
   Fans[u] = FanSlice();
   Kind[u] = VertexKind::Removed;
