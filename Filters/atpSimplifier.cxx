@@ -839,7 +839,9 @@ void Simplifier::Evaluate(std::uint32_t u, bool checkLegal)
   }
   else
   {
-    // Only the cheapest matters: a target of a worse rank than the best so far is not priced.
+    // Only the cheapest matters: a target of a worse rank than the best so far is not priced,
+    // and the others are compared in Before's order on loose fields (building a candidate for
+    // each and calling Before measured 2.8% more instructions per simplification).
     int rank = 3;
     double cost = 0;
     std::uint32_t target = None;
