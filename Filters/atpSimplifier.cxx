@@ -51,6 +51,23 @@ inline bool Before(const Candidate& a, const Candidate& b)
   return a.Cost < b.Cost || (a.Cost == b.Cost && a.Target < b.Target);
 }
 
+/// Corner k of triangle t as one number: 4t + k rather than 3t + k, so that taking it apart,
+/// which every walk around a vertex does for every corner, is a shift and a mask instead of a
+/// division by 3. Meshes stay far below the 2^30 triangles this allows (checked).
+constexpr std::uint32_t CornerOf(std::uint32_t t, int k)
+{
+  return t << 2 | std::uint32_t(k);
+}
+constexpr std::uint32_t TriangleOf(std::uint32_t c)
+{
+  return c >> 2;
+}
+constexpr int CornerSlot(std::uint32_t c)
+{
+  return int(c & 3);
+}
+constexpr std::size_t MaxTriangles = std::size_t(1) << 30;
+
 inline int NextCorner(int k)
 {
   return k == 2 ? 0 : k + 1;
@@ -94,11 +111,24 @@ struct FanSlice
   std::uint32_t Count = 0;
 };
 
-/// One call's state. A vertex's fan is a run of corners (corner = 3 * triangle + k) in one pool,
-/// in the order of a walk around it; removed triangles drop out lazily as fans are gathered. A
-/// collapse writes the target's new fan at the end of the pool. Runs rather than lists linked
-/// through the triangles: a walk's reads of the triangles no longer wait on each other, which
-/// matters once a diamond's mesh outgrows the cache.
+/// A gathered fan: its live corners, read where they lie in the pool. Valid until the pool
+/// changes (a collapse) or the vertex's fan is gathered again.
+struct FanView
+{
+  const std::uint32_t* First = nullptr;
+  std::uint32_t Count = 0;
+  const std::uint32_t* begin() const { return First; }
+  const std::uint32_t* end() const { return First + Count; }
+  std::size_t size() const { return Count; }
+  bool empty() const { return Count == 0; }
+  std::uint32_t operator[](std::size_t i) const { return First[i]; }
+};
+
+/// One call's state. A vertex's fan is a run of corners (CornerOf) in one pool, in the order of
+/// a walk around it; removed triangles drop out lazily as fans are gathered. A collapse writes
+/// the target's new fan at the end of the pool. Runs rather than lists linked through the
+/// triangles: a walk's reads of the triangles no longer wait on each other, which matters once a
+/// diamond's mesh outgrows the cache.
 class Simplifier
 {
 public:
@@ -111,7 +141,8 @@ private:
   void AssignRegions();
   void Classify(std::uint32_t u);
   void BuildQuadrics();
-  void GatherFan(std::uint32_t u, std::vector<std::uint32_t>& fan);
+  /// Drops u's removed corners from its run, and points Fan at it.
+  void GatherFan(std::uint32_t u);
   bool CanCollapse(std::uint32_t u, std::uint32_t v);
   /// Queues u's cheapest collapse; only a legal one when checkLegal, otherwise legality is
   /// checked when it comes out of the queue (most evaluations are superseded before that).
@@ -167,7 +198,7 @@ private:
     for (std::uint32_t i = run.Start; i < run.Start + run.Count; ++i)
     {
       const std::uint32_t c = Corners[i];
-      if (!Faces[c / 3].Removed)
+      if (!Faces[TriangleOf(c)].Removed)
       {
         out.push_back(c);
       }
@@ -185,8 +216,8 @@ private:
     RegionsOver += std::size_t(over) - std::size_t(Over[i]);
     Over[i] = over;
   }
-  /// Corner c (3 * triangle + k): its vertex.
-  std::uint32_t& VertexAt(std::uint32_t c) { return Faces[c / 3].V[c % 3]; }
+  /// Corner c: its vertex.
+  std::uint32_t& VertexAt(std::uint32_t c) { return Faces[TriangleOf(c)].V[CornerSlot(c)]; }
   bool Contains(std::uint32_t t, std::uint32_t v) const
   {
     return Faces[t].V[0] == v || Faces[t].V[1] == v || Faces[t].V[2] == v;
@@ -199,9 +230,9 @@ private:
     for (std::uint32_t i = 0; i < Fans[v].Count; ++i)
     {
       const std::uint32_t c = corners[i];
-      if (!Faces[c / 3].Removed)
+      if (!Faces[TriangleOf(c)].Removed)
       {
-        visit(c / 3, int(c % 3));
+        visit(TriangleOf(c), int(CornerSlot(c)));
       }
     }
   }
@@ -253,7 +284,7 @@ private:
   bool Relaxed = false;
 
   // Scratch, reused by every collapse: stamps make clearing unnecessary.
-  std::vector<std::uint32_t> Fan;
+  FanView Fan;
   std::vector<std::uint32_t> Neighbors;
   std::vector<Candidate> Candidates;
   std::vector<int> MovedRegions;
@@ -284,6 +315,10 @@ Simplifier::Simplifier(const PatchMesh& mesh, int regionCount, const RegionFunct
   , TriangleCount(mesh.TriangleCount())
   , Waiting(CheckedRegionCount(regionCount, quotas), VertexCount)
 {
+  if (TriangleCount >= MaxTriangles)
+  {
+    throw std::invalid_argument("Simplify: a mesh of 2^30 triangles or more");
+  }
   Faces.resize(TriangleCount);
   for (std::size_t t = 0; t < TriangleCount; ++t)
   {
@@ -399,12 +434,12 @@ void Simplifier::LinkCorners()
   // Collapses append fans: room for about as many corners again.
   Corners.reserve(2 * std::size_t(start));
   Corners.resize(start);
-  for (std::uint32_t c = 0; c < 3 * TriangleCount; ++c)
+  for (std::uint32_t t = 0; t < TriangleCount; ++t)
   {
-    if (!Faces[c / 3].Removed)
+    for (int k = 0; k < 3 && !Faces[t].Removed; ++k)
     {
-      FanSlice& fan = Fans[VertexAt(c)];
-      Corners[fan.Start + fan.Count++] = c;
+      FanSlice& fan = Fans[Faces[t].V[k]];
+      Corners[fan.Start + fan.Count++] = CornerOf(t, k);
     }
   }
 }
@@ -444,26 +479,25 @@ void Simplifier::AssignRegions()
   }
 }
 
-void Simplifier::GatherFan(std::uint32_t u, std::vector<std::uint32_t>& fan)
+void Simplifier::GatherFan(std::uint32_t u)
 {
-  fan.clear();
   FanSlice& run = Fans[u];
   std::uint32_t* corners = Corners.data() + run.Start;
   std::uint32_t live = 0;
   for (std::uint32_t i = 0; i < run.Count; ++i)
   {
     const std::uint32_t c = corners[i];
-    if (!Faces[c / 3].Removed)
+    if (!Faces[TriangleOf(c)].Removed)
     {
       if (live != i)
       {
         corners[live] = c; // closes the gap of a removed corner
       }
       ++live;
-      fan.push_back(c);
     }
   }
   run.Count = live;
+  Fan = FanView{ corners, live };
 }
 
 // A vertex may move only if its fan is one consistently oriented disk (Free) or half-disk whose
@@ -471,7 +505,7 @@ void Simplifier::GatherFan(std::uint32_t u, std::vector<std::uint32_t>& fan)
 // (a boundary edge of one input patch can be interior once patches are welded).
 void Simplifier::Classify(std::uint32_t u)
 {
-  GatherFan(u, Fan);
+  GatherFan(u);
   if (Fan.empty())
   {
     return; // unused vertex: stays Locked
@@ -489,8 +523,8 @@ void Simplifier::Classify(std::uint32_t u)
   };
   for (std::size_t i = 0; i < Fan.size(); ++i)
   {
-    const std::uint32_t t = Fan[i] / 3;
-    const int k = int(Fan[i] % 3);
+    const std::uint32_t t = TriangleOf(Fan[i]);
+    const int k = CornerSlot(Fan[i]);
     const std::uint32_t x = Faces[t].V[NextCorner(k)];
     const std::uint32_t y = Faces[t].V[PrevCorner(k)];
     touch(x);
@@ -504,8 +538,8 @@ void Simplifier::Classify(std::uint32_t u)
   std::size_t start = 0;
   for (std::size_t i = 0; i < Fan.size(); ++i)
   {
-    const std::uint32_t t = Fan[i] / 3;
-    const int k = int(Fan[i] % 3);
+    const std::uint32_t t = TriangleOf(Fan[i]);
+    const int k = CornerSlot(Fan[i]);
     const std::uint32_t x = Faces[t].V[NextCorner(k)];
     const std::uint32_t y = Faces[t].V[PrevCorner(k)];
     locked = locked || CountU[x] > 1 || CountV[x] > 1;
@@ -537,8 +571,8 @@ void Simplifier::Classify(std::uint32_t u)
   std::size_t visited = 1;
   for (std::size_t i = start; visited <= Fan.size(); ++visited)
   {
-    const std::uint32_t t = Fan[i] / 3;
-    const std::uint32_t y = Faces[t].V[PrevCorner(int(Fan[i] % 3))];
+    const std::uint32_t t = TriangleOf(Fan[i]);
+    const std::uint32_t y = Faces[t].V[PrevCorner(CornerSlot(Fan[i]))];
     if (CountU[y] == 0 || SlotU[y] == start)
     {
       break;
@@ -657,8 +691,8 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
   const double* pv = Position(v);
   for (std::uint32_t c : Fan)
   {
-    const std::uint32_t t = c / 3;
-    const int k = int(c % 3);
+    const std::uint32_t t = TriangleOf(c);
+    const int k = int(CornerSlot(c));
     const std::uint32_t x = Faces[t].V[NextCorner(k)];
     const std::uint32_t y = Faces[t].V[PrevCorner(k)];
     if (x == v || y == v)
@@ -719,8 +753,8 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
   bool movesPocket = false;
   for (std::uint32_t c : Fan)
   {
-    const std::uint32_t t = c / 3;
-    const int k = int(c % 3);
+    const std::uint32_t t = TriangleOf(c);
+    const int k = int(CornerSlot(c));
     const std::uint32_t x = Faces[t].V[NextCorner(k)];
     const std::uint32_t y = Faces[t].V[PrevCorner(k)];
     const bool moves = x != v && y != v;
@@ -781,14 +815,14 @@ void Simplifier::ForEachCollapse(std::uint32_t u, Consider consider)
     const bool ranksDiffer = RegionCount > 1 && RegionsOver < std::size_t(RegionCount);
     for (std::size_t i = 0; ranksDiffer && i < Fan.size(); ++i)
     {
-      const std::uint32_t t = Fan[i] / 3;
-      MarkU[Faces[t].V[PrevCorner(int(Fan[i] % 3))]] = StampU;
-      SlotU[Faces[t].V[PrevCorner(int(Fan[i] % 3))]] = t;
+      const std::uint32_t t = TriangleOf(Fan[i]);
+      MarkU[Faces[t].V[PrevCorner(CornerSlot(Fan[i]))]] = StampU;
+      SlotU[Faces[t].V[PrevCorner(CornerSlot(Fan[i]))]] = t;
     }
     for (std::uint32_t c : Fan)
     {
-      const std::uint32_t t = c / 3;
-      const std::uint32_t x = Faces[t].V[NextCorner(int(c % 3))];
+      const std::uint32_t t = TriangleOf(c);
+      const std::uint32_t x = Faces[t].V[NextCorner(int(CornerSlot(c)))];
       const int other = MarkU[x] == StampU ? Faces[SlotU[x]].Region : Faces[t].Region;
       consider(x, Faces[t].Region, other);
     }
@@ -796,8 +830,8 @@ void Simplifier::ForEachCollapse(std::uint32_t u, Consider consider)
   }
   for (std::uint32_t c : Fan)
   {
-    const std::uint32_t t = c / 3;
-    const int k = int(c % 3);
+    const std::uint32_t t = TriangleOf(c);
+    const int k = int(CornerSlot(c));
     if (Faces[t].Bits & (1u << k))
     {
       consider(Faces[t].V[NextCorner(k)], Faces[t].Region, Faces[t].Region);
@@ -818,7 +852,7 @@ void Simplifier::Evaluate(std::uint32_t u, bool checkLegal)
     return;
   }
   Best[u] = Candidate();
-  GatherFan(u, Fan);
+  GatherFan(u);
   const double* record = Record(u);
   Candidate cheapest;
   if (checkLegal)
@@ -927,7 +961,7 @@ std::int64_t Simplifier::ExcessChange(std::uint32_t u, std::uint32_t v)
   const float* pv = &Mesh.Positions[3 * std::size_t(v)];
   for (std::uint32_t c : Fan)
   {
-    const std::uint32_t t = c / 3;
+    const std::uint32_t t = TriangleOf(c);
     if (Contains(t, v))
     {
       change(Faces[t].Region, -1);
@@ -982,7 +1016,7 @@ void Simplifier::FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, 
   std::uint32_t acrossWU = None, acrossVW = None;
   for (std::uint32_t c : Fan)
   {
-    const std::uint32_t s = c / 3;
+    const std::uint32_t s = TriangleOf(c);
     if (s != t && !Contains(s, v) && Contains(s, w))
     {
       acrossWU = s;
@@ -1027,7 +1061,7 @@ void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
 {
   for (std::uint32_t c : Fan)
   {
-    const std::uint32_t t = c / 3;
+    const std::uint32_t t = TriangleOf(c);
     if (Contains(t, v))
     {
       const std::uint32_t* tri = Faces[t].V;
@@ -1038,7 +1072,7 @@ void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
   for (std::size_t i = 0; i < Fan.size(); ++i)
   {
     const std::uint32_t c = Fan[i];
-    const std::uint32_t t = c / 3;
+    const std::uint32_t t = TriangleOf(c);
     CountTriangles(Faces[t].Region, -1);
     if (MovedRegions[i] < 0)
     {
@@ -1049,19 +1083,14 @@ void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
     Faces[t].Region = MovedRegions[i];
     CountTriangles(MovedRegions[i], 1);
   }
-  // v's new fan: u's moved corners, then v's own.
-  if (Corners.size() + Fan.size() + Fans[v].Count > Corners.capacity())
+  // v's new fan: u's moved corners, then v's own. Compacting moves u's run: Fan is not read
+  // after it.
+  if (Corners.size() + Fans[u].Count + Fans[v].Count > Corners.capacity())
   {
-    CompactCorners(Fan.size() + Fans[v].Count);
+    CompactCorners(Fans[u].Count + Fans[v].Count);
   }
   const std::uint32_t start = std::uint32_t(Corners.size());
-  for (std::uint32_t c : Fan)
-  {
-    if (!Faces[c / 3].Removed)
-    {
-      Corners.push_back(c);
-    }
-  }
+  AppendLiveCorners(Fans[u], Corners);
   AppendLiveCorners(Fans[v], Corners);
   Fans[v] = FanSlice{ start, std::uint32_t(Corners.size()) - start };
   Fans[u] = FanSlice();
@@ -1120,7 +1149,7 @@ SimplifyResult Simplifier::Run()
     const std::uint32_t u = Waiting.Front(std::size_t(best)).Vertex;
     Waiting.Remove(u);
     const std::uint32_t v = Best[u].Target;
-    GatherFan(u, Fan);
+    GatherFan(u);
     if (!CanCollapse(u, v))
     {
       Evaluate(u, true);
@@ -1150,7 +1179,7 @@ SimplifyResult Simplifier::Run()
     Neighbors.clear();
     for (std::uint32_t c : Fan)
     {
-      const std::uint32_t t = c / 3;
+      const std::uint32_t t = TriangleOf(c);
       for (int k = 0; k < 3; ++k)
       {
         const std::uint32_t x = Faces[t].V[k];
@@ -1285,11 +1314,11 @@ double Simplifier::Deviation()
   // point is interior to it; or, as soon as one triangle is within max2, that triangle's.
   bool inside = false;
   const auto fanDistance2 = [&](std::uint32_t v, std::uint32_t& closest) {
-    GatherFan(v, Fan);
+    GatherFan(v);
     double nearest2 = 1e300;
     for (std::uint32_t c : Fan)
     {
-      const std::uint32_t t = c / 3;
+      const std::uint32_t t = TriangleOf(c);
       double corners[3][3];
       for (int k = 0; k < 3; ++k)
       {
