@@ -37,30 +37,44 @@ inline void AddPlane(double* q, const double n[3], double d, double w)
   q[9] += w * d * d;
 }
 
-/// The triangle whose attribute j has the field g[3j..3j+3), d[j], weighted by w.
-inline void AddField(double* q, int attributes, const double* g, const double* d, double w)
+/// Sets q (Size(attributes) doubles) to a triangle's quadric, weighted by w: its plane
+/// n.p + d = 0 (n of unit length) and the linear field g[3j..3j+3), d[j] of each attribute j.
+/// Written at once rather than added into a zeroed record: the simplifier does this for every
+/// triangle of every diamond.
+inline void SetTriangle(double* q, const double n[3], double d, int attributes, const double* g,
+  const double* offsets, double w)
 {
-  q[10] += w;
+  const double wn[3] = { w * n[0], w * n[1], w * n[2] };
+  const double wd = w * d;
+  double a[10] = { wn[0] * n[0], wn[0] * n[1], wn[0] * n[2], wn[1] * n[1], wn[1] * n[2],
+    wn[2] * n[2], wd * n[0], wd * n[1], wd * n[2], wd * d };
   double* G = q + 11;
   double* D = G + 3 * attributes;
   for (int j = 0; j < attributes; ++j)
   {
     const double* gj = g + 3 * j;
-    q[0] += w * gj[0] * gj[0];
-    q[1] += w * gj[0] * gj[1];
-    q[2] += w * gj[0] * gj[2];
-    q[3] += w * gj[1] * gj[1];
-    q[4] += w * gj[1] * gj[2];
-    q[5] += w * gj[2] * gj[2];
-    q[6] += w * d[j] * gj[0];
-    q[7] += w * d[j] * gj[1];
-    q[8] += w * d[j] * gj[2];
-    q[9] += w * d[j] * d[j];
-    G[3 * j] += w * gj[0];
-    G[3 * j + 1] += w * gj[1];
-    G[3 * j + 2] += w * gj[2];
-    D[j] += w * d[j];
+    const double wg[3] = { w * gj[0], w * gj[1], w * gj[2] };
+    const double wdj = w * offsets[j];
+    a[0] += wg[0] * gj[0];
+    a[1] += wg[0] * gj[1];
+    a[2] += wg[0] * gj[2];
+    a[3] += wg[1] * gj[1];
+    a[4] += wg[1] * gj[2];
+    a[5] += wg[2] * gj[2];
+    a[6] += wdj * gj[0];
+    a[7] += wdj * gj[1];
+    a[8] += wdj * gj[2];
+    a[9] += wdj * offsets[j];
+    G[3 * j] = wg[0];
+    G[3 * j + 1] = wg[1];
+    G[3 * j + 2] = wg[2];
+    D[j] = wdj;
   }
+  for (int i = 0; i < 10; ++i)
+  {
+    q[i] = a[i];
+  }
+  q[10] = attributes > 0 ? w : 0;
 }
 
 /// q += r over n doubles (Size(m), or a longer record holding a quadric). Records never
@@ -78,6 +92,19 @@ inline void Add(double* __restrict q, const double* __restrict r, std::size_t n)
   for (; i < n; ++i)
   {
     q[i] += r[i];
+  }
+}
+
+/// a += r, b += r and c += r over n doubles: a triangle's quadric read once for its three
+/// corners' records (which never overlap).
+inline void AddToCorners(double* __restrict a, double* __restrict b, double* __restrict c,
+  const double* __restrict r, std::size_t n)
+{
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    a[i] += r[i];
+    b[i] += r[i];
+    c[i] += r[i];
   }
 }
 

@@ -621,15 +621,12 @@ void Simplifier::BuildQuadrics()
 
     // Hoppe's linear attribute field over the triangle: g.p + d equals the attribute at the
     // corners, with g in the triangle's plane.
-    std::fill_n(q, RecordSize, 0.0);
-    Quadric::AddPlane(q, n, d, area);
-    q[size] = area;
+    double g[3 * MaxAttributes], offset[MaxAttributes];
     if (Attributes > 0)
     {
       double c1[3], c2[3];
       Cross(e2, n, c1);
       Cross(n, e1, c2);
-      double g[3 * MaxAttributes], offset[MaxAttributes];
       const double* s0 = AttributesOf(tri[0]);
       const double* s1 = AttributesOf(tri[1]);
       const double* s2 = AttributesOf(tri[2]);
@@ -643,12 +640,10 @@ void Simplifier::BuildQuadrics()
         }
         offset[j] = s0[j] - Dot(g + 3 * j, p0);
       }
-      Quadric::AddField(q, Attributes, g, offset, area);
     }
-    for (int k = 0; k < 3; ++k)
-    {
-      Quadric::Add(Record(tri[k]), q, RecordSize);
-    }
+    Quadric::SetTriangle(q, n, d, Attributes, g, offset, area);
+    q[size] = area;
+    Quadric::AddToCorners(Record(tri[0]), Record(tri[1]), Record(tri[2]), q, RecordSize);
 
     for (int k = 0; k < 3; ++k)
     {
