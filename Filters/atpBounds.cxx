@@ -1,8 +1,8 @@
 #include "atpBounds.h"
 
-#include <CGAL/Cartesian.h>
 #include <CGAL/Min_sphere_of_spheres_d.h>
 #include <CGAL/Min_sphere_of_spheres_d_traits_3.h>
+#include <CGAL/Simple_cartesian.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,8 @@ namespace atp
 {
 namespace
 {
-using Kernel = CGAL::Cartesian<double>;
+/// Points by value: CGAL::Cartesian's reference-counted handles cost an allocation per point.
+using Kernel = CGAL::Simple_cartesian<double>;
 using Traits = CGAL::Min_sphere_of_spheres_d_traits_3<Kernel, double>;
 using MinSphere = CGAL::Min_sphere_of_spheres_d<Traits>;
 
