@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <string>
 
 namespace atp
@@ -234,8 +235,8 @@ struct EdgesByStart
 {
   EdgesByStart(const std::vector<std::uint32_t>& indices, std::size_t vertexCount)
     : First(vertexCount + 1, 0)
-    , End(indices.size())
-    , Triangle(indices.size())
+    , End(new std::uint32_t[indices.size()]) // every entry is written: no zeroing
+    , Triangle(new std::uint32_t[indices.size()])
   {
     for (const std::uint32_t a : indices)
     {
@@ -246,26 +247,34 @@ struct EdgesByStart
       First[v + 1] += First[v];
     }
     std::vector<std::uint32_t> fill(First.begin(), First.end() - 1);
-    for (std::size_t c = 0; c < indices.size(); ++c)
+    const auto put = [&](std::uint32_t a, std::uint32_t b, std::uint32_t t) {
+      End[fill[a]] = b;
+      Triangle[fill[a]++] = t;
+    };
+    for (std::size_t t = 0; t < indices.size() / 3; ++t)
     {
-      const std::uint32_t a = indices[c];
-      End[fill[a]] = indices[c - c % 3 + (c + 1) % 3];
-      Triangle[fill[a]++] = std::uint32_t(c / 3);
+      const std::uint32_t* corners = &indices[3 * t];
+      put(corners[0], corners[1], std::uint32_t(t));
+      put(corners[1], corners[2], std::uint32_t(t));
+      put(corners[2], corners[0], std::uint32_t(t));
     }
   }
 
   /// Whether a triangle holds the directed edge a->b.
   bool Has(std::uint32_t a, std::uint32_t b) const
   {
-    return std::find(End.begin() + First[a], End.begin() + First[a + 1], b) != End.begin() + First[a + 1];
+    const std::uint32_t* first = End.get() + First[a];
+    const std::uint32_t* last = End.get() + First[a + 1];
+    return std::find(first, last, b) != last;
   }
   /// How many triangles hold the directed edge a->b.
   std::size_t Count(std::uint32_t a, std::uint32_t b) const
   {
-    return std::size_t(std::count(End.begin() + First[a], End.begin() + First[a + 1], b));
+    return std::size_t(std::count(End.get() + First[a], End.get() + First[a + 1], b));
   }
 
-  std::vector<std::uint32_t> First, End, Triangle;
+  std::vector<std::uint32_t> First;
+  std::unique_ptr<std::uint32_t[]> End, Triangle;
 };
 
 /// Per vertex: whether it lies on an edge used by exactly one triangle of the patch.
