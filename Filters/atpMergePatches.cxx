@@ -1,5 +1,6 @@
 #include "atpMergePatches.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace atp
@@ -33,12 +34,14 @@ PatchMesh MergePatches(
     colors = colors || p->HasColors();
   }
 
+  // Sized for the most there can be, written in place, trimmed at the end.
   PatchMesh out;
-  out.Positions.reserve(3 * vertexCount);
-  out.Normals.reserve(normals ? 3 * vertexCount : 0);
-  out.Colors.reserve(colors ? 4 * vertexCount : 0);
-  out.Indices.reserve(3 * triangleCount);
-  out.BoundaryEdges.reserve(triangleCount);
+  out.Positions.resize(3 * vertexCount);
+  out.Normals.resize(normals ? 3 * vertexCount : 0);
+  out.Colors.resize(colors ? 4 * vertexCount : 0);
+  out.Indices.resize(3 * triangleCount);
+  out.BoundaryEdges.resize(triangleCount);
+  std::size_t vertices = 0, triangles = 0;
 
   // Open addressing on the position bits; slots hold output index + 1 (0 is empty). Only
   // lookups touch the table, so its layout cannot influence the output order.
@@ -73,20 +76,19 @@ PatchMesh MergePatches(
       }
       if (slots[s] == 0)
       {
-        slots[s] = std::uint32_t(out.VertexCount() + 1);
-        out.Positions.insert(out.Positions.end(), &p->Positions[3 * v], &p->Positions[3 * v] + 3);
+        slots[s] = std::uint32_t(vertices + 1);
+        std::copy_n(&p->Positions[3 * v], 3, &out.Positions[3 * vertices]);
         if (normals)
         {
           const float up[3] = { 0, 0, 1 };
-          const float* normal = p->Normals.empty() ? up : &p->Normals[3 * v];
-          out.Normals.insert(out.Normals.end(), normal, normal + 3);
+          std::copy_n(p->Normals.empty() ? up : &p->Normals[3 * v], 3, &out.Normals[3 * vertices]);
         }
         if (colors)
         {
           const std::uint8_t white[4] = { 255, 255, 255, 255 };
-          const std::uint8_t* color = p->HasColors() ? &p->Colors[4 * v] : white;
-          out.Colors.insert(out.Colors.end(), color, color + 4);
+          std::copy_n(p->HasColors() ? &p->Colors[4 * v] : white, 4, &out.Colors[4 * vertices]);
         }
+        ++vertices;
       }
       remap[v] = slots[s] - 1;
     }
@@ -99,14 +101,21 @@ PatchMesh MergePatches(
       {
         continue;
       }
-      out.Indices.insert(out.Indices.end(), { a, b, c });
-      out.BoundaryEdges.push_back(t < p->BoundaryEdges.size() ? p->BoundaryEdges[t] : 0);
+      out.Indices[3 * triangles] = a;
+      out.Indices[3 * triangles + 1] = b;
+      out.Indices[3 * triangles + 2] = c;
+      out.BoundaryEdges[triangles++] = t < p->BoundaryEdges.size() ? p->BoundaryEdges[t] : 0;
       if (trianglePatch)
       {
         trianglePatch->push_back(source);
       }
     }
   }
+  out.Positions.resize(3 * vertices);
+  out.Normals.resize(normals ? 3 * vertices : 0);
+  out.Colors.resize(colors ? 4 * vertices : 0);
+  out.Indices.resize(3 * triangles);
+  out.BoundaryEdges.resize(triangles);
   return out;
 }
 
