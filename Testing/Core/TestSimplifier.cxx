@@ -1,7 +1,8 @@
-// The constrained simplifier, its collapse queues and the patch merge: locked and original
+// The constrained simplifier, its quadrics, its collapse queues and the patch merge: locked and original
 // boundaries, topology, quotas, triangle quality, exact vertices, determinism, error.
 #include "atpCollapseQueues.h"
 #include "atpMergePatches.h"
+#include "atpQuadric.h"
 #include "atpSimplifier.h"
 
 #include <gtest/gtest.h>
@@ -713,4 +714,73 @@ TEST(Simplifier, RejectsMismatchedQuotasAndRegionsOutOfRange)
   EXPECT_THROW(Simplify(mesh, 1 << 30, OneRegion(), { 10 }), std::invalid_argument); // nothing sized first
   const RegionFunction outside = [](const double*, int) { return 2; };
   EXPECT_THROW(Simplify(mesh, 2, outside, { 10, 10 }), std::invalid_argument);
+}
+
+// Q(p, s) of one triangle is w times its squared plane distance plus, per attribute, w times
+// the squared deviation of s from the attribute's linear field at p; for attribute counts the
+// evaluation unrolls (0, 3, 4, 7) and for others.
+TEST(Quadric, ATrianglesQuadricIsItsWeightedPlaneDistanceAndFieldDeviation)
+{
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> value(-1, 1);
+  for (const int attributes : { 0, 2, 3, 4, 7 })
+  {
+    double n[3] = { value(random), value(random), value(random) };
+    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (double& x : n)
+    {
+      x /= length;
+    }
+    const double d = value(random);
+    const double w = 0.5 + value(random) * value(random);
+    const std::size_t count = static_cast<std::size_t>(attributes);
+    std::vector<double> g(3 * count), offsets(count);
+    for (double& x : g)
+    {
+      x = value(random);
+    }
+    for (double& x : offsets)
+    {
+      x = value(random);
+    }
+    std::vector<double> q(Quadric::Size(attributes), -1.0); // every entry is written
+    Quadric::SetTriangle(q.data(), n, d, attributes, g.data(), offsets.data(), w);
+    for (int trial = 0; trial < 20; ++trial)
+    {
+      const double p[3] = { value(random), value(random), value(random) };
+      std::vector<double> s(count);
+      double expected = n[0] * p[0] + n[1] * p[1] + n[2] * p[2] + d;
+      expected = w * expected * expected;
+      for (int j = 0; j < attributes; ++j)
+      {
+        s[std::size_t(j)] = value(random);
+        const double* gj = &g[3 * std::size_t(j)];
+        const double deviation = gj[0] * p[0] + gj[1] * p[1] + gj[2] * p[2] +
+          offsets[std::size_t(j)] - s[std::size_t(j)];
+        expected += w * deviation * deviation;
+      }
+      EXPECT_NEAR(Quadric::Evaluate(q.data(), attributes, p, s.data()), expected, 1e-12)
+        << attributes << " attributes";
+    }
+  }
+}
+
+TEST(Quadric, AddingToCornersAddsToEachRecord)
+{
+  const std::size_t n = Quadric::Size(3) + 1;
+  std::vector<double> r(n), a(n), b(n), c(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    r[i] = 0.5 * double(i) + 1;
+    a[i] = double(i);
+    b[i] = -double(i);
+    c[i] = 3;
+  }
+  Quadric::AddToCorners(a.data(), b.data(), c.data(), r.data(), n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    EXPECT_EQ(a[i], double(i) + r[i]);
+    EXPECT_EQ(b[i], -double(i) + r[i]);
+    EXPECT_EQ(c[i], 3 + r[i]);
+  }
 }
