@@ -236,7 +236,7 @@ private:
       const std::uint32_t c = corners[i];
       if (!Faces[TriangleOf(c)].Removed)
       {
-        visit(TriangleOf(c), int(CornerSlot(c)));
+        visit(TriangleOf(c), CornerSlot(c));
       }
     }
   }
@@ -691,7 +691,7 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
   for (std::uint32_t c : Fan)
   {
     const std::uint32_t t = TriangleOf(c);
-    const int k = int(CornerSlot(c));
+    const int k = CornerSlot(c);
     const std::uint32_t x = Faces[t].V[NextCorner(k)];
     const std::uint32_t y = Faces[t].V[PrevCorner(k)];
     if (x == v || y == v)
@@ -753,7 +753,7 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
   for (std::uint32_t c : Fan)
   {
     const std::uint32_t t = TriangleOf(c);
-    const int k = int(CornerSlot(c));
+    const int k = CornerSlot(c);
     const std::uint32_t x = Faces[t].V[NextCorner(k)];
     const std::uint32_t y = Faces[t].V[PrevCorner(k)];
     const bool moves = x != v && y != v;
@@ -821,7 +821,7 @@ void Simplifier::ForEachCollapse(std::uint32_t u, Consider consider)
     for (std::uint32_t c : Fan)
     {
       const std::uint32_t t = TriangleOf(c);
-      const std::uint32_t x = Faces[t].V[NextCorner(int(CornerSlot(c)))];
+      const std::uint32_t x = Faces[t].V[NextCorner(CornerSlot(c))];
       const int other = ranksDiffer && MarkU[x] == StampU ? Faces[SlotU[x]].Region : Faces[t].Region;
       consider(x, Faces[t].Region, other);
     }
@@ -830,7 +830,7 @@ void Simplifier::ForEachCollapse(std::uint32_t u, Consider consider)
   for (std::uint32_t c : Fan)
   {
     const std::uint32_t t = TriangleOf(c);
-    const int k = int(CornerSlot(c));
+    const int k = CornerSlot(c);
     if (Faces[t].Bits & (1u << k))
     {
       consider(Faces[t].V[NextCorner(k)], Faces[t].Region, Faces[t].Region);
