@@ -22,19 +22,33 @@ constexpr std::size_t Size(int attributes)
   return 11 + 4 * std::size_t(attributes);
 }
 
-/// The plane n.p + d = 0 (n of unit length), with weight w.
+/// What the plane n.p + d = 0 (n of unit length) with weight w contributes to A, B and C (the
+/// first 10 doubles of a quadric).
+inline void PlaneTerms(const double n[3], double d, double w, double terms[10])
+{
+  const double wn[3] = { w * n[0], w * n[1], w * n[2] };
+  const double wd = w * d;
+  terms[0] = wn[0] * n[0];
+  terms[1] = wn[0] * n[1];
+  terms[2] = wn[0] * n[2];
+  terms[3] = wn[1] * n[1];
+  terms[4] = wn[1] * n[2];
+  terms[5] = wn[2] * n[2];
+  terms[6] = wd * n[0];
+  terms[7] = wd * n[1];
+  terms[8] = wd * n[2];
+  terms[9] = wd * d;
+}
+
+/// Adds the plane n.p + d = 0 (n of unit length), with weight w.
 inline void AddPlane(double* q, const double n[3], double d, double w)
 {
-  q[0] += w * n[0] * n[0];
-  q[1] += w * n[0] * n[1];
-  q[2] += w * n[0] * n[2];
-  q[3] += w * n[1] * n[1];
-  q[4] += w * n[1] * n[2];
-  q[5] += w * n[2] * n[2];
-  q[6] += w * d * n[0];
-  q[7] += w * d * n[1];
-  q[8] += w * d * n[2];
-  q[9] += w * d * d;
+  double terms[10];
+  PlaneTerms(n, d, w, terms);
+  for (int i = 0; i < 10; ++i)
+  {
+    q[i] += terms[i];
+  }
 }
 
 /// Sets q (Size(attributes) doubles) to a triangle's quadric, weighted by w: its plane
@@ -44,10 +58,8 @@ inline void AddPlane(double* q, const double n[3], double d, double w)
 inline void SetTriangle(double* q, const double n[3], double d, int attributes, const double* g,
   const double* offsets, double w)
 {
-  const double wn[3] = { w * n[0], w * n[1], w * n[2] };
-  const double wd = w * d;
-  double a[10] = { wn[0] * n[0], wn[0] * n[1], wn[0] * n[2], wn[1] * n[1], wn[1] * n[2],
-    wn[2] * n[2], wd * n[0], wd * n[1], wd * n[2], wd * d };
+  double a[10];
+  PlaneTerms(n, d, w, a);
   double* G = q + 11;
   double* D = G + 3 * attributes;
   for (int j = 0; j < attributes; ++j)
@@ -81,15 +93,7 @@ inline void SetTriangle(double* q, const double n[3], double d, int attributes, 
 /// overlap: restrict lets the compiler add them a vector at a time.
 inline void Add(double* __restrict q, const double* __restrict r, std::size_t n)
 {
-  std::size_t i = 0;
-  for (; i + 4 <= n; i += 4)
-  {
-    q[i] += r[i];
-    q[i + 1] += r[i + 1];
-    q[i + 2] += r[i + 2];
-    q[i + 3] += r[i + 3];
-  }
-  for (; i < n; ++i)
+  for (std::size_t i = 0; i < n; ++i)
   {
     q[i] += r[i];
   }
