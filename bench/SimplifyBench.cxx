@@ -1,14 +1,16 @@
 // Our constrained simplifier against meshopt_simplify (meshoptimizer 0.18, LockBorder) on
 // diamond-like chunks of a real mesh: speed (triangles removed per second) and the symmetric,
 // sampled Hausdorff distance between input and output, relative to the chunk's box diagonal.
-//   atp-bench-simplify [MESH] [CHUNK_TRIANGLES] [CHUNKS] [--speed-only]
+//   atp-bench-simplify [MESH] [CHUNK_TRIANGLES] [CHUNKS] [--speed-only] [--normal-weight=W]
 // MESH defaults to Data/bumpy-torus.ply; for chunks the size of a real diamond (2-8 members x 2
 // children x 1000-4000 triangles) of a larger mesh:
 //   atp generate -n 2000000 -o /tmp/g.ply && atp-bench-simplify /tmp/g.ply 16000 6
 // A chunk is the set of triangles whose centroid lies in
 // a box around a mesh vertex: its cut border is the "diamond-external" boundary (locked by both
 // simplifiers), the input's own holes inside it are the original boundary. --speed-only skips
-// the Hausdorff sampling (for profiling the simplifiers: it takes most of the run otherwise).
+// the error measures (for profiling the simplifiers: they take most of the run otherwise);
+// --normal-weight sets SimplifyOptions::NormalWeight of the first variant (default: the
+// library's).
 #include "atpMergePatches.h"
 #include "atpSimplifier.h"
 #include "atpNormalEncoding.h"
@@ -238,8 +240,19 @@ public:
     }
   }
 
-  double Distance(Vec p)
+  struct Hit
   {
+    double Distance = 0;
+    std::uint32_t Triangle = 0;
+    Vec Point{ 0, 0, 0 };
+  };
+
+  double Distance(Vec p) { return Nearest(p).Distance; }
+
+  /// The point of the surface nearest to p, and its triangle.
+  Hit Nearest(Vec p)
+  {
+    Hit hit;
     ++Query;
     const int c[3] = { CellOf(0, p.x), CellOf(1, p.y), CellOf(2, p.z) };
     double best = 1e300;
@@ -261,24 +274,32 @@ public:
                 continue;
               Stamp[t] = Query;
               const Vec q = ClosestOnTriangle(p, Corner(t, 0), Corner(t, 1), Corner(t, 2));
-              best = std::min(best, Dot(q - p, q - p));
+              if (Dot(q - p, q - p) < best)
+              {
+                best = Dot(q - p, q - p);
+                hit.Triangle = t;
+                hit.Point = q;
+              }
             }
           }
       if (best <= (r * Cell) * (r * Cell))
         break;
     }
-    return std::sqrt(best);
+    hit.Distance = std::sqrt(best);
+    return hit;
   }
+
+  Vec Corner(std::uint32_t t, int k) const
+  {
+    const float* p = &Positions[3 * std::size_t(Indices[3 * t + std::uint32_t(k)])];
+    return { p[0], p[1], p[2] };
+  }
+  std::uint32_t CornerVertex(std::uint32_t t, int k) const { return Indices[3 * t + std::uint32_t(k)]; }
 
 private:
   int CellOf(int a, double x) const
   {
     return std::max(0, std::min(Dim[a] - 1, int((x - Lo[a]) / Cell)));
-  }
-  Vec Corner(std::uint32_t t, int k) const
-  {
-    const float* p = &Positions[3 * std::size_t(Indices[3 * t + std::uint32_t(k)])];
-    return { p[0], p[1], p[2] };
   }
 
   const std::vector<float>& Positions;
@@ -341,6 +362,47 @@ double Hausdorff(const std::vector<float>& positions, const std::vector<std::uin
   return std::max(OneSidedHausdorff(positions, input, output, 8), OneSidedHausdorff(positions, output, input, 16));
 }
 
+/// Shading error: at every vertex of `input`, the angle in degrees between its normal and the
+/// normal interpolated (barycentric, from the corners' normals) at the nearest point of
+/// `output`, averaged. Both simplifiers keep input vertices with their normals, so this shows
+/// how well the kept normals stand in for the removed ones once drawn.
+double MeanNormalAngle(const std::vector<float>& positions, const std::vector<float>& normals,
+  const std::vector<std::uint32_t>& input, const std::vector<std::uint32_t>& output)
+{
+  SurfaceGrid grid(positions, output);
+  std::vector<bool> seen(positions.size() / 3, false);
+  double sum = 0;
+  std::size_t count = 0;
+  for (const std::uint32_t v : input)
+  {
+    if (seen[v])
+    {
+      continue;
+    }
+    seen[v] = true;
+    const SurfaceGrid::Hit hit = grid.Nearest({ positions[3 * v], positions[3 * v + 1], positions[3 * v + 2] });
+    const Vec a = grid.Corner(hit.Triangle, 0), ab = grid.Corner(hit.Triangle, 1) - a,
+              ac = grid.Corner(hit.Triangle, 2) - a, ap = hit.Point - a;
+    // Barycentric coordinates of the nearest point (Ericson 3.4).
+    const double d00 = Dot(ab, ab), d01 = Dot(ab, ac), d11 = Dot(ac, ac), d20 = Dot(ap, ab), d21 = Dot(ap, ac);
+    const double denominator = d00 * d11 - d01 * d01;
+    const double wb = denominator > 0 ? (d11 * d20 - d01 * d21) / denominator : 0;
+    const double wc = denominator > 0 ? (d00 * d21 - d01 * d20) / denominator : 0;
+    const double weights[3] = { 1 - wb - wc, wb, wc };
+    Vec n{ 0, 0, 0 };
+    for (int k = 0; k < 3; ++k)
+    {
+      const float* nk = &normals[3 * std::size_t(grid.CornerVertex(hit.Triangle, k))];
+      n = n + weights[k] * Vec{ nk[0], nk[1], nk[2] };
+    }
+    const Vec m{ normals[3 * v], normals[3 * v + 1], normals[3 * v + 2] };
+    const double cosine = Dot(n, m) / std::sqrt(std::max(1e-300, Dot(n, n) * Dot(m, m)));
+    sum += std::acos(std::max(-1.0, std::min(1.0, cosine))) * 180 / 3.14159265358979323846;
+    ++count;
+  }
+  return count > 0 ? sum / double(count) : 0;
+}
+
 double Diagonal(const PatchMesh& mesh)
 {
   double lo[3] = { 1e300, 1e300, 1e300 }, hi[3] = { -1e300, -1e300, -1e300 };
@@ -391,13 +453,13 @@ std::vector<std::uint32_t> ToChunkIndices(const PatchMesh& chunk, const Simplify
 struct Row
 {
   std::size_t Out = 0;
-  double Seconds = 0, Hausdorff = 0;
+  double Seconds = 0, Hausdorff = 0, NormalAngle = 0;
 };
 
 void Print(const char* name, std::size_t in, const Row& row)
 {
-  std::printf("  %-26s %7zu %9.2f %12.2f %14.3e\n", name, row.Out, row.Seconds * 1e3,
-    double(in - row.Out) / row.Seconds / 1e6, row.Hausdorff);
+  std::printf("  %-26s %7zu %9.2f %12.2f %14.3e %10.2f\n", name, row.Out, row.Seconds * 1e3,
+    double(in - row.Out) / row.Seconds / 1e6, row.Hausdorff, row.NormalAngle);
 }
 
 } // namespace
@@ -407,14 +469,34 @@ int main(int argc, char** argv)
   const std::string path = argc > 1 ? argv[1] : ATP_DATA_DIR "/bumpy-torus.ply";
   const std::size_t target = argc > 2 ? std::stoul(argv[2]) : 12000;
   const int chunks = argc > 3 ? std::stoi(argv[3]) : 6;
-  const bool measureError = !(argc > 4 && std::string(argv[4]) == "--speed-only");
+  bool measureError = true;
+  double normalWeight = SimplifyOptions().NormalWeight;
+  for (int i = 4; i < argc; ++i)
+  {
+    const std::string option = argv[i];
+    if (option == "--speed-only")
+    {
+      measureError = false;
+    }
+    else if (option.rfind("--normal-weight=", 0) == 0)
+    {
+      normalWeight = std::stod(option.substr(16));
+    }
+    else
+    {
+      std::fprintf(stderr, "unknown option %s\n", option.c_str());
+      return 1;
+    }
+  }
   const PatchMesh mesh = Load(path);
   std::printf("mesh %s: %zu vertices, %zu triangles; %d chunks of ~%zu triangles, each halved\n",
     path.c_str(), mesh.VertexCount(), mesh.TriangleCount(), chunks, target);
   std::printf("meshopt_simplify (meshoptimizer %d.%d) runs with meshopt_SimplifyLockBorder and target_error 1:\n"
               "LockBorder also locks the input's own holes, which our simplifier may simplify along.\n"
-              "Hausdorff: symmetric, sampled, relative to the chunk's box diagonal.\n\n",
-    MESHOPTIMIZER_VERSION / 1000, MESHOPTIMIZER_VERSION % 1000 / 10);
+              "Hausdorff: symmetric, sampled, relative to the chunk's box diagonal. Normal: the mean\n"
+              "angle (degrees) between each input vertex's normal and the output's interpolated\n"
+              "normal at its nearest point. Ours weighs normals by %g.\n\n",
+    MESHOPTIMIZER_VERSION / 1000, MESHOPTIMIZER_VERSION % 1000 / 10, normalWeight);
 
   Row sum[3];
   std::size_t sumIn = 0;
@@ -441,28 +523,28 @@ int main(int argc, char** argv)
     const std::uint32_t quota = std::uint32_t(chunk.TriangleCount() / 2);
     const double diagonal = Diagonal(chunk);
     // Relative to the chunk's diagonal; 0 (not sampled) with --speed-only.
-    const auto errorOf = [&](const std::vector<std::uint32_t>& out) {
-      return measureError ? Hausdorff(chunk.Positions, chunk.Indices, out) / diagonal : 0.0;
+    const auto measure = [&](const std::vector<std::uint32_t>& out, Row& row) {
+      row.Out = out.size() / 3;
+      if (measureError)
+      {
+        row.Hausdorff = Hausdorff(chunk.Positions, chunk.Indices, out) / diagonal;
+        row.NormalAngle = MeanNormalAngle(chunk.Positions, chunk.Normals, chunk.Indices, out);
+      }
     };
     std::printf("chunk %d: %zu triangles, %zu cut (locked) edges, %zu hole edges -> quota %u\n", c,
       chunk.TriangleCount(), open.second, open.first, quota);
-    std::printf("  %-26s %7s %9s %12s %14s\n", "", "out", "ms", "Mtri/s rem.", "Hausdorff/diag");
+    std::printf("  %-26s %7s %9s %12s %14s %10s\n", "", "out", "ms", "Mtri/s rem.", "Hausdorff/diag", "normal°");
 
     Row rows[3];
     for (int variant = 0; variant < 2; ++variant)
     {
       SimplifyOptions options;
-      if (variant == 1)
-      {
-        options.NormalWeight = 0;
-      }
+      options.NormalWeight = variant == 1 ? 0 : normalWeight;
       SimplifyResult result;
       rows[variant].Seconds = Time([&] {
         result = Simplify(chunk, 1, [](const double*, int) { return 0; }, { quota }, options);
       });
-      const std::vector<std::uint32_t> out = ToChunkIndices(chunk, result);
-      rows[variant].Out = out.size() / 3;
-      rows[variant].Hausdorff = errorOf(out);
+      measure(ToChunkIndices(chunk, result), rows[variant]);
     }
     std::vector<std::uint32_t> out(chunk.Indices.size());
     std::size_t count = 0;
@@ -471,19 +553,19 @@ int main(int argc, char** argv)
         chunk.VertexCount(), 3 * sizeof(float), 3 * std::size_t(quota), 1.0f, meshopt_SimplifyLockBorder, nullptr);
     });
     out.resize(count);
-    rows[2].Out = count / 3;
-    rows[2].Hausdorff = errorOf(out);
+    measure(out, rows[2]);
     for (int v = 0; v < 3; ++v)
     {
       Print(names[v], chunk.TriangleCount(), rows[v]);
       sum[v].Out += rows[v].Out;
       sum[v].Seconds += rows[v].Seconds;
       sum[v].Hausdorff += rows[v].Hausdorff / chunks;
+      sum[v].NormalAngle += rows[v].NormalAngle / chunks;
     }
     sumIn += chunk.TriangleCount();
   }
-  std::printf("\nall chunks (time and rate summed, Hausdorff averaged):\n");
-  std::printf("  %-26s %7s %9s %12s %14s\n", "", "out", "ms", "Mtri/s rem.", "Hausdorff/diag");
+  std::printf("\nall chunks (time and rate summed, errors averaged):\n");
+  std::printf("  %-26s %7s %9s %12s %14s %10s\n", "", "out", "ms", "Mtri/s rem.", "Hausdorff/diag", "normal°");
   for (int v = 0; v < 3; ++v)
   {
     Print(names[v], sumIn, sum[v]);

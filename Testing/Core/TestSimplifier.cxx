@@ -616,6 +616,29 @@ TEST(Simplifier, PlanarGridHasNoError)
   EXPECT_LT(result.Error, 1e-6);
 }
 
+TEST(Simplifier, NoMovedFaceNearlyEdgeOnToItsCornersNormals)
+{
+  // A plane whose input normals all lean away from its faces by the same angle: every collapse
+  // leaves faces at that angle from their corners' normals.
+  const auto leaning = [](double degrees) {
+    PatchMesh mesh = Grid(20, [](double, double) { return 0.25; }, false);
+    const double radians = degrees * 3.14159265358979323846 / 180;
+    for (std::size_t v = 0; v < mesh.VertexCount(); ++v)
+    {
+      mesh.Normals[3 * v] = float(std::sin(radians));
+      mesh.Normals[3 * v + 1] = 0;
+      mesh.Normals[3 * v + 2] = float(std::cos(radians));
+    }
+    return mesh;
+  };
+  const SimplifyResult steep = Simplify(leaning(85), 1, OneRegion(), { 200 });
+  EXPECT_EQ(steep.Collapses, 0u) << "faces 85 degrees off their normals are fins";
+  EXPECT_FALSE(steep.QuotasMet);
+  const SimplifyResult moderate = Simplify(leaning(75), 1, OneRegion(), { 200 });
+  EXPECT_TRUE(moderate.QuotasMet);
+  EXPECT_GT(moderate.Collapses, 200u);
+}
+
 TEST(Simplifier, EmptyInput)
 {
   const SimplifyResult result = Simplify(PatchMesh(), 2, OneRegion(), { 0, 5 });
