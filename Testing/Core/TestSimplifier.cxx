@@ -616,27 +616,87 @@ TEST(Simplifier, PlanarGridHasNoError)
   EXPECT_LT(result.Error, 1e-6);
 }
 
-TEST(Simplifier, NoMovedFaceNearlyEdgeOnToItsCornersNormals)
+/// A triangle by its corners' positions, in a canonical order.
+std::array<PositionKey, 3> TriangleKey(const PatchMesh& mesh, std::size_t t)
 {
-  // A plane whose input normals all lean away from its faces by the same angle: every collapse
-  // leaves faces at that angle from their corners' normals.
+  std::array<PositionKey, 3> key;
+  for (int k = 0; k < 3; ++k)
+  {
+    key[std::size_t(k)] = KeyOf(mesh, mesh.Indices[3 * t + std::size_t(k)]);
+  }
+  std::sort(key.begin(), key.end());
+  return key;
+}
+
+/// The smallest cosine between a face of `out` that is not a face of `in` and its corners'
+/// normals.
+double LeastFacingOfNewFaces(const PatchMesh& in, const PatchMesh& out)
+{
+  std::set<std::array<PositionKey, 3>> inputFaces;
+  for (std::size_t t = 0; t < in.TriangleCount(); ++t)
+  {
+    inputFaces.insert(TriangleKey(in, t));
+  }
+  double least = 1;
+  for (std::size_t t = 0; t < out.TriangleCount(); ++t)
+  {
+    if (inputFaces.count(TriangleKey(out, t)) != 0)
+    {
+      continue;
+    }
+    double p[3][3];
+    for (int k = 0; k < 3; ++k)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        p[k][c] = out.Positions[3 * std::size_t(out.Indices[3 * t + std::size_t(k)]) + std::size_t(c)];
+      }
+    }
+    const double a[3] = { p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] };
+    const double b[3] = { p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] };
+    const double n[3] = { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int k = 0; k < 3; ++k)
+    {
+      const float* m = &out.Normals[3 * std::size_t(out.Indices[3 * t + std::size_t(k)])];
+      least = std::min(least, (n[0] * m[0] + n[1] * m[1] + n[2] * m[2]) / length);
+    }
+  }
+  return least;
+}
+
+TEST(Simplifier, FacesNearlyEdgeOnToTheirNormalsOnlyWhenAQuotaNeedsThem)
+{
+  // A plane whose normals lean away from its faces by `degrees` where x < 1/2 (upright
+  // elsewhere): a collapse there leaves faces at that angle from their corners' normals.
   const auto leaning = [](double degrees) {
     PatchMesh mesh = Grid(20, [](double, double) { return 0.25; }, false);
     const double radians = degrees * 3.14159265358979323846 / 180;
     for (std::size_t v = 0; v < mesh.VertexCount(); ++v)
     {
-      mesh.Normals[3 * v] = float(std::sin(radians));
+      const bool leans = mesh.Positions[3 * v] < 0.5f;
+      mesh.Normals[3 * v] = leans ? float(std::sin(radians)) : 0.0f;
       mesh.Normals[3 * v + 1] = 0;
-      mesh.Normals[3 * v + 2] = float(std::cos(radians));
+      mesh.Normals[3 * v + 2] = leans ? float(std::cos(radians)) : 1.0f;
     }
     return mesh;
   };
-  const SimplifyResult steep = Simplify(leaning(85), 1, OneRegion(), { 200 });
-  EXPECT_EQ(steep.Collapses, 0u) << "faces 85 degrees off their normals are fins";
-  EXPECT_FALSE(steep.QuotasMet);
-  const SimplifyResult moderate = Simplify(leaning(75), 1, OneRegion(), { 200 });
-  EXPECT_TRUE(moderate.QuotasMet);
-  EXPECT_GT(moderate.Collapses, 200u);
+  const double cos80 = std::cos(80 * 3.14159265358979323846 / 180);
+  // 800 triangles to 600: the upright half alone can give up 200.
+  const PatchMesh steep = leaning(85);
+  const SimplifyResult spared = Simplify(steep, 1, OneRegion(), { 600 });
+  EXPECT_TRUE(spared.QuotasMet);
+  EXPECT_GT(LeastFacingOfNewFaces(steep, Joined(spared)), cos80) << "a fin where other collapses were left";
+  // To 100: the leaning half must give up triangles too, fins and all.
+  const SimplifyResult needed = Simplify(steep, 1, OneRegion(), { 100 });
+  EXPECT_TRUE(needed.QuotasMet);
+  EXPECT_GT(LeastFacingOfNewFaces(steep, Joined(needed)), 0.0) << "never against the normals";
+  EXPECT_LT(LeastFacingOfNewFaces(steep, Joined(needed)), cos80);
+  // Leaning 75 degrees is no fin: collapses there need no fallback.
+  const PatchMesh moderate = leaning(75);
+  const SimplifyResult fine = Simplify(moderate, 1, OneRegion(), { 100 });
+  EXPECT_TRUE(fine.QuotasMet);
+  EXPECT_GT(LeastFacingOfNewFaces(moderate, Joined(fine)), cos80);
 }
 
 TEST(Simplifier, EmptyInput)
