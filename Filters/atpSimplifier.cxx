@@ -25,7 +25,8 @@ constexpr double DegenerateSine2 = 1e-12;
 /// under 90: a face almost edge-on to the normals it is shaded with is a fin standing off the
 /// surface. Measured on 16 chunks each of the brain and the 2M torus (atp-bench-simplify), this
 /// lowered the sampled Hausdorff distance by 4% and 1% (docs/construction.md, "Weighing
-/// normals"). Only a preference: a region that cannot meet its quota otherwise gets its fins.
+/// normals"). Only a preference: fins are allowed once the regions over quota have no other
+/// collapse left.
 constexpr double FinCosine = 0.17;
 /// At most 3 normal components and 4 color channels.
 constexpr int MaxAttributes = 7;
@@ -1158,12 +1159,12 @@ SimplifyResult Simplifier::Run()
         }
         continue;
       }
-      if (MinFacing == 0)
+      if (MinFacing == 0) // the guard is off already: nothing legal is left at all
       {
         break;
       }
-      // Still over quota with no legal collapse left: a fin is the lesser evil than a patch
-      // over its budget. Every vertex is priced again without the guard.
+      // Still over quota with no legal collapse left: a fin is a lesser evil than a patch over
+      // its budget. Every vertex is priced again without the guard.
       MinFacing = 0;
       for (std::uint32_t v = 0; v < VertexCount; ++v)
       {

@@ -692,11 +692,14 @@ TEST(Simplifier, FacesNearlyEdgeOnToTheirNormalsOnlyWhenAQuotaNeedsThem)
   EXPECT_TRUE(needed.QuotasMet);
   EXPECT_GT(LeastFacingOfNewFaces(steep, Joined(needed)), 0.0) << "never against the normals";
   EXPECT_LT(LeastFacingOfNewFaces(steep, Joined(needed)), cos80);
-  // Leaning 75 degrees is no fin: collapses there need no fallback.
+  // Leaning 75 degrees is no fin: the leaning half collapses too even when the upright half
+  // alone could meet the quota, and never past 80 degrees.
   const PatchMesh moderate = leaning(75);
-  const SimplifyResult fine = Simplify(moderate, 1, OneRegion(), { 100 });
+  const SimplifyResult fine = Simplify(moderate, 1, OneRegion(), { 600 });
   EXPECT_TRUE(fine.QuotasMet);
-  EXPECT_GT(LeastFacingOfNewFaces(moderate, Joined(fine)), cos80);
+  const double facing = LeastFacingOfNewFaces(moderate, Joined(fine));
+  EXPECT_GT(facing, cos80);
+  EXPECT_LT(facing, std::cos(70 * 3.14159265358979323846 / 180)) << "no new face where the normals lean";
 }
 
 TEST(Simplifier, EmptyInput)
