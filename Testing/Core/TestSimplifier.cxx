@@ -32,6 +32,31 @@ PositionKey KeyOf(const PatchMesh& mesh, std::uint32_t v)
   return key;
 }
 
+/// Triangle t of a mesh in double: its corners, and its normal scaled by twice its area.
+struct FaceGeometry
+{
+  double P[3][3];
+  double N[3];
+};
+
+FaceGeometry FaceOf(const PatchMesh& mesh, std::size_t t)
+{
+  FaceGeometry f;
+  for (int k = 0; k < 3; ++k)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      f.P[k][c] = mesh.Positions[3 * std::size_t(mesh.Indices[3 * t + std::size_t(k)]) + std::size_t(c)];
+    }
+  }
+  const double a[3] = { f.P[1][0] - f.P[0][0], f.P[1][1] - f.P[0][1], f.P[1][2] - f.P[0][2] };
+  const double b[3] = { f.P[2][0] - f.P[0][0], f.P[2][1] - f.P[0][1], f.P[2][2] - f.P[0][2] };
+  f.N[0] = a[1] * b[2] - a[2] * b[1];
+  f.N[1] = a[2] * b[0] - a[0] * b[2];
+  f.N[2] = a[0] * b[1] - a[1] * b[0];
+  return f;
+}
+
 /// Area-weighted vertex normals.
 void ComputeNormals(PatchMesh& mesh)
 {
@@ -426,17 +451,9 @@ TEST(Simplifier, NoFlippedOrDegenerateTrianglesAndExactVertices)
   {
     const std::uint32_t* tri = &out.Indices[3 * t];
     ASSERT_TRUE(tri[0] != tri[1] && tri[1] != tri[2] && tri[2] != tri[0]);
-    double p[3][3];
-    for (int k = 0; k < 3; ++k)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        p[k][c] = out.Positions[3 * std::size_t(tri[k]) + std::size_t(c)];
-      }
-    }
-    const double a[3] = { p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] };
-    const double b[3] = { p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] };
-    const double n[3] = { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+    const FaceGeometry face = FaceOf(out, t);
+    const auto& p = face.P;
+    const double* n = face.N;
     const double area = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     EXPECT_GT(area, 1e-8);
     // Outward: away from the tube's center circle.
@@ -644,17 +661,8 @@ double LeastFacingOfNewFaces(const PatchMesh& in, const PatchMesh& out)
     {
       continue;
     }
-    double p[3][3];
-    for (int k = 0; k < 3; ++k)
-    {
-      for (int c = 0; c < 3; ++c)
-      {
-        p[k][c] = out.Positions[3 * std::size_t(out.Indices[3 * t + std::size_t(k)]) + std::size_t(c)];
-      }
-    }
-    const double a[3] = { p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] };
-    const double b[3] = { p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] };
-    const double n[3] = { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+    const FaceGeometry face = FaceOf(out, t);
+    const double* n = face.N;
     const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     for (int k = 0; k < 3; ++k)
     {
