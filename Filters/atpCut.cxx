@@ -60,7 +60,7 @@ bool OutsideFrustum(const float sphere[4], const ViewPoint& view)
   return false;
 }
 
-bool FacesAway(const NormalCone& cone, const float sphere[4], const ViewPoint& view)
+bool FacesAway(const CullingCone& cone, const float sphere[4], const ViewPoint& view)
 {
   if (cone.IsEmpty())
   {
@@ -203,7 +203,7 @@ void CutSelector::Select(const ViewPoint& view, double errorScale, const Residen
     }
     if (view.BackfaceCulling)
     {
-      NormalCone own;
+      CullingCone own;
       std::copy(node.ConeAxis, node.ConeAxis + 3, own.Axis);
       own.Cos = node.ConeCos;
       if (FacesAway(own, node.Sphere, view))

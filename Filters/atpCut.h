@@ -48,7 +48,7 @@ VTKATPFILTERS_EXPORT bool OutsideFrustum(const float sphere[4], const ViewPoint&
 
 /// True when every normal of `cone`, at every point of the sphere, faces away from the eye.
 VTKATPFILTERS_EXPORT bool FacesAway(
-  const NormalCone& cone, const float sphere[4], const ViewPoint& view);
+  const CullingCone& cone, const float sphere[4], const ViewPoint& view);
 
 /// One cut: what to draw and what is missing to draw the cut the view asks for.
 struct CutResult

@@ -13,14 +13,14 @@ namespace
 {
 constexpr double Pi = 3.14159265358979323846;
 
-double HalfAngle(const NormalCone& c)
+double HalfAngle(const CullingCone& c)
 {
   return std::acos(std::max(-1.0, std::min(1.0, double(c.Cos))));
 }
 
-NormalCone PatchCone(const ModelNode& node)
+CullingCone PatchCone(const ModelNode& node)
 {
-  NormalCone cone;
+  CullingCone cone;
   if (node.TriangleCount == 0)
   {
     return cone; // empty
@@ -31,7 +31,7 @@ NormalCone PatchCone(const ModelNode& node)
 }
 } // namespace
 
-NormalCone MergeCones(const NormalCone& a, const NormalCone& b)
+CullingCone MergeCones(const CullingCone& a, const CullingCone& b)
 {
   if (a.IsEmpty())
   {
@@ -53,7 +53,7 @@ NormalCone MergeCones(const NormalCone& a, const NormalCone& b)
   {
     return b;
   }
-  NormalCone merged;
+  CullingCone merged;
   const double half = 0.5 * (between + ha + hb);
   if (half >= Pi || between < 1e-9)
   {
@@ -143,7 +143,7 @@ CutIndex::CutIndex(const ModelFile& model)
   for (std::size_t n = count; n-- > 0;)
   {
     const ModelNode& node = model.Node(n);
-    NormalCone cone = PatchCone(node);
+    CullingCone cone = PatchCone(node);
     for (const std::int32_t child : node.Children)
     {
       if (child >= 0)

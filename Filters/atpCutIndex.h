@@ -18,9 +18,11 @@
 namespace atp
 {
 
-/// A cone of directions: unit axis and the cosine of its half angle. Cos -1: every direction;
-/// Cos above 1: no direction at all (the cone of an empty patch).
-struct NormalCone
+/// The cut's cone of normals, from the file's floats: unit axis and the cosine of its half angle.
+/// Cos -1: every direction; Cos above 1: no direction at all (the cone of an empty patch).
+/// Named apart from construction's NormalCone (atpBounds.h, in double): one name for two
+/// layouts in one library broke the one-definition rule (GCC's -Wodr under LTO).
+struct CullingCone
 {
   float Axis[3] = { 0, 0, 1 };
   float Cos = 2;
@@ -29,7 +31,7 @@ struct NormalCone
 };
 
 /// The smallest cone holding both cones (exact for two cones on the sphere of directions).
-VTKATPFILTERS_EXPORT NormalCone MergeCones(const NormalCone& a, const NormalCone& b);
+VTKATPFILTERS_EXPORT CullingCone MergeCones(const CullingCone& a, const CullingCone& b);
 
 class VTKATPFILTERS_EXPORT CutIndex
 {
@@ -49,13 +51,13 @@ public:
   const std::uint32_t* ParentsBegin(std::uint32_t d) const { return &Parents[ParentStart[d]]; }
   const std::uint32_t* ParentsEnd(std::uint32_t d) const { return &Parents[ParentStart[d + 1]]; }
   /// Encloses the normals of node n's patch and of all its descendants' patches.
-  const NormalCone& SaturatedCone(std::uint32_t node) const { return Cones[node]; }
+  const CullingCone& SaturatedCone(std::uint32_t node) const { return Cones[node]; }
 
 private:
   std::vector<std::uint32_t> DiamondOfNode;
   std::vector<std::uint32_t> MemberStart, Members;
   std::vector<std::uint32_t> ParentStart, Parents;
-  std::vector<NormalCone> Cones;
+  std::vector<CullingCone> Cones;
 };
 
 } // namespace atp

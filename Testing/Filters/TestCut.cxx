@@ -23,10 +23,10 @@ namespace
 {
 using namespace atp::test;
 
-atp::NormalCone Cone(double x, double y, double z, double halfAngleDegrees)
+atp::CullingCone Cone(double x, double y, double z, double halfAngleDegrees)
 {
   const double length = std::sqrt(x * x + y * y + z * z);
-  atp::NormalCone c;
+  atp::CullingCone c;
   c.Axis[0] = float(x / length);
   c.Axis[1] = float(y / length);
   c.Axis[2] = float(z / length);
@@ -34,7 +34,7 @@ atp::NormalCone Cone(double x, double y, double z, double halfAngleDegrees)
   return c;
 }
 
-bool Holds(const atp::NormalCone& outer, const atp::NormalCone& inner)
+bool Holds(const atp::CullingCone& outer, const atp::CullingCone& inner)
 {
   if (inner.IsEmpty() || outer.Cos <= -1)
   {
@@ -51,14 +51,14 @@ TEST(Cut, MergedConesHoldBothCones)
   std::uniform_real_distribution<double> unit(-1, 1), angle(0, 100);
   for (int i = 0; i < 1000; ++i)
   {
-    const atp::NormalCone a = Cone(unit(random), unit(random), unit(random), angle(random));
-    const atp::NormalCone b = Cone(unit(random), unit(random), unit(random), angle(random));
-    const atp::NormalCone m = atp::MergeCones(a, b);
+    const atp::CullingCone a = Cone(unit(random), unit(random), unit(random), angle(random));
+    const atp::CullingCone b = Cone(unit(random), unit(random), unit(random), angle(random));
+    const atp::CullingCone m = atp::MergeCones(a, b);
     EXPECT_TRUE(Holds(m, a) && Holds(m, b));
     // Never wider than needed: at most the sum of both plus the angle between them.
     EXPECT_GE(std::acos(double(m.Cos)), std::max(std::acos(double(a.Cos)), std::acos(double(b.Cos))) - 1e-4);
   }
-  const atp::NormalCone empty;
+  const atp::CullingCone empty;
   EXPECT_EQ(atp::MergeCones(empty, Cone(1, 0, 0, 10)).Cos, Cone(1, 0, 0, 10).Cos);
 }
 
