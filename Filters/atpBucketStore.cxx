@@ -45,9 +45,9 @@ std::size_t HashCorner(std::uint64_t low, std::uint64_t high)
 BucketStore::BucketStore(const std::string& scratchDirectory, std::size_t memoryBudgetBytes, bool colors)
   : Disk(scratchDirectory)
   , Buckets(scratchDirectory)
-  , Pages(scratchDirectory)
-  , CornerBytes(PositionNormalBytes + (colors ? 4 : 0))
   , LastTriangles(LastTriangleSlots)
+  , CornerBytes(PositionNormalBytes + (colors ? 4 : 0))
+  , Pages(scratchDirectory)
 {
   // At least a handful of frames so that a split (one bucket read, two appended) always fits.
   const std::size_t frameBytes = PageBytes + CornerTableSlots * sizeof(std::uint16_t);

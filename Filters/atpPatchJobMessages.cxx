@@ -27,8 +27,7 @@ public:
   void Put(const T& value)
   {
     static_assert(std::is_trivially_copyable<T>::value, "memory images only");
-    const auto* bytes = reinterpret_cast<const std::uint8_t*>(&value);
-    Out.insert(Out.end(), bytes, bytes + sizeof(T));
+    Append(&value, sizeof(T));
   }
 
   template<typename T>
@@ -36,8 +35,7 @@ public:
   {
     static_assert(std::is_trivially_copyable<T>::value, "memory images only");
     Put(std::uint64_t(values.size()));
-    const auto* bytes = reinterpret_cast<const std::uint8_t*>(values.data());
-    Out.insert(Out.end(), bytes, bytes + values.size() * sizeof(T));
+    Append(values.data(), values.size() * sizeof(T));
   }
 
   void PutMesh(const PatchMesh& mesh)
@@ -50,6 +48,19 @@ public:
   }
 
 private:
+  /// Resized, then copied: vector::insert of a few bytes trips GCC 12's -Wstringop-overflow
+  /// (a false positive) once inlined.
+  void Append(const void* bytes, std::size_t count)
+  {
+    if (count == 0)
+    {
+      return;
+    }
+    const std::size_t at = Out.size();
+    Out.resize(at + count);
+    std::memcpy(Out.data() + at, bytes, count);
+  }
+
   std::vector<std::uint8_t>& Out;
 };
 
