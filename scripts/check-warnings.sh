@@ -8,6 +8,22 @@
 #   -Wstringop-overflow warnings once LTO inlines across files.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+# First, that the compiler still rejects a violation with these flags: one struct of two
+# layouts in two files.
+canary=$(mktemp -d)
+trap 'rm -rf "$canary"' EXIT
+printf 'struct Cone { float Axis[3]; };\nfloat First(const Cone& c) { return c.Axis[0]; }\n' \
+  > "$canary/a.cxx"
+printf 'struct Cone { double Axis[3]; };\nfloat First(const Cone& c);\nint main() { return int(First(Cone{})); }\n' \
+  > "$canary/b.cxx"
+if c++ -O2 -flto=auto -Werror=odr "$canary/a.cxx" "$canary/b.cxx" -o "$canary/odr" 2> "$canary/log" ||
+  ! grep -q "One Definition Rule" "$canary/log"; then
+  echo "check-warnings: the compiler no longer reports a one-definition-rule violation:" >&2
+  cat "$canary/log" >&2
+  exit 1
+fi
+
 cmake -S . -B build-warnings -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="-Werror"
 cmake --build build-warnings
 cmake -S . -B build-odr -G Ninja -DCMAKE_BUILD_TYPE=Release \
