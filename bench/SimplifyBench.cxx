@@ -570,5 +570,9 @@ int main(int argc, char** argv)
   {
     Print(names[v], sumIn, sum[v]);
   }
+  // Both run in the same process, chunk after chunk: the ratio holds still where this machine's
+  // speed drifts (by 25-50% within minutes), so runs of different builds compare by it.
+  std::printf("time against meshopt_simplify's: %.3fx with normals, %.3fx on positions\n",
+    sum[0].Seconds / sum[2].Seconds, sum[1].Seconds / sum[2].Seconds);
   return 0;
 }
