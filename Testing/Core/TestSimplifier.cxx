@@ -698,8 +698,9 @@ TEST(Simplifier, FacesNearlyEdgeOnToTheirNormalsOnlyWhenAQuotaNeedsThem)
   // To 100: the leaning half must give up triangles too, fins and all.
   const SimplifyResult needed = Simplify(steep, 1, OneRegion(), { 100 });
   EXPECT_TRUE(needed.QuotasMet);
-  EXPECT_GT(LeastFacingOfNewFaces(steep, Joined(needed)), 0.0) << "never against the normals";
-  EXPECT_LT(LeastFacingOfNewFaces(steep, Joined(needed)), cos80);
+  const double neededFacing = LeastFacingOfNewFaces(steep, Joined(needed));
+  EXPECT_GT(neededFacing, 0.0) << "never against the normals";
+  EXPECT_LT(neededFacing, cos80);
   // Leaning 75 degrees is no fin: the leaning half collapses too even when the upright half
   // alone could meet the quota, and never past 80 degrees.
   const PatchMesh moderate = leaning(75);
