@@ -318,6 +318,94 @@ TEST(Simplifier, OriginalBoundaryOnlyLosesVertices)
   }
 }
 
+// A grid of bumps, free to simplify, with three defects whose vertices must all stay: a fin
+// standing on a row of its vertices (edges of three triangles), a small sheet touching it at one
+// vertex only (a fan of a disk and a wedge), and one triangle turned against its neighbors.
+// The pinch is what the classification's walk around a fan guards: without it the pinch passes
+// for a boundary vertex and collapses along the sheet's side.
+TEST(Simplifier, NonManifoldAndMisorientedVerticesNeverMove)
+{
+  const int n = 40;
+  PatchMesh mesh = Grid(n, Bumps, true);
+  const auto at = [&](int i, int j) { return std::uint32_t(j * (n + 1) + i); };
+  const auto position = [&](std::uint32_t v) { return &mesh.Positions[3 * std::size_t(v)]; };
+  const auto addVertex = [&](double x, double y, double z) {
+    mesh.Positions.insert(mesh.Positions.end(), { float(x), float(y), float(z) });
+    return std::uint32_t(mesh.VertexCount() - 1);
+  };
+  std::set<std::uint32_t> mustStay;
+
+  // The fin: rows above the grid's row j = 20, its bottom row being that row's own vertices.
+  const int finRows = 10;
+  std::vector<std::uint32_t> below;
+  for (int i = 0; i <= n; ++i)
+  {
+    below.push_back(at(i, 20));
+    mustStay.insert(at(i, 20));
+  }
+  for (int r = 1; r <= finRows; ++r)
+  {
+    std::vector<std::uint32_t> row;
+    for (int i = 0; i <= n; ++i)
+    {
+      const float* base = position(at(i, 20));
+      row.push_back(addVertex(base[0], base[1], base[2] + 0.3 * r / finRows));
+    }
+    for (int i = 0; i < n; ++i)
+    {
+      mesh.Indices.insert(mesh.Indices.end(), { below[i], below[i + 1], row[i + 1], below[i], row[i + 1], row[i] });
+    }
+    below = row;
+  }
+
+  // The sheet: a wedge of triangles just above the grid, facing up, touching it only at (10, 10).
+  const std::uint32_t pinch = at(10, 10);
+  mustStay.insert(pinch);
+  const float* p = position(pinch);
+  std::vector<std::uint32_t> rim;
+  for (int k = 0; k <= 6; ++k)
+  {
+    const double angle = 0.2 * k;
+    rim.push_back(addVertex(p[0] - 0.005 * std::cos(angle), p[1] + 0.005 * std::sin(angle), p[2] + 0.001));
+  }
+  const std::size_t firstOfSheet = mesh.TriangleCount();
+  for (int k = 0; k < 6; ++k)
+  {
+    mesh.Indices.insert(mesh.Indices.end(), { pinch, rim[k + 1], rim[k] });
+  }
+
+  // The turned triangle, far from both.
+  const std::size_t turned = 2 * std::size_t(30 * n + 30);
+  std::swap(mesh.Indices[3 * turned + 1], mesh.Indices[3 * turned + 2]);
+  for (int k = 0; k < 3; ++k)
+  {
+    mustStay.insert(mesh.Indices[3 * turned + std::size_t(k)]);
+  }
+
+  ComputeNormals(mesh);
+  MarkOpenEdges(mesh, true);
+  // The sheet's rim is diamond-external, so the sheet keeps its triangles and the pinch has a
+  // legal collapse along the sheet's sides if it were taken for a boundary vertex.
+  for (std::size_t t = firstOfSheet; t < firstOfSheet + 6; ++t)
+  {
+    mesh.BoundaryEdges[t] &= std::uint8_t(~2u);
+  }
+  // A quota out of reach: the simplifier goes on while any collapse is legal, so a vertex that
+  // may move does.
+  const SimplifyResult result = Simplify(mesh, 1, OneRegion(), { 1 });
+  ASSERT_GT(result.Collapses, mesh.TriangleCount() / 4) << "the grid around the defects simplifies";
+  const PatchMesh out = Joined(result);
+  std::set<PositionKey> kept;
+  for (std::uint32_t v = 0; v < out.VertexCount(); ++v)
+  {
+    kept.insert(KeyOf(out, v));
+  }
+  for (std::uint32_t v : mustStay)
+  {
+    EXPECT_TRUE(kept.count(KeyOf(mesh, v))) << "vertex " << v << " moved";
+  }
+}
+
 TEST(Simplifier, ClosedMeshStaysClosed)
 {
   const PatchMesh mesh = BumpyTorus(96, 48);
