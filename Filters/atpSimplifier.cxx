@@ -1,5 +1,6 @@
 #include "atpSimplifier.h"
 
+#include "atpClosestPoint.h"
 #include "atpCollapseQueues.h"
 #include "atpQuadric.h"
 
@@ -1261,60 +1262,19 @@ SimplifyResult Simplifier::Run()
   return result;
 }
 
-/// Squared distance from p to the triangle (a, b, c): the closest point by its Voronoi region
-/// (Ericson, Real-Time Collision Detection, 5.1.5). inside: whether it is interior to the face.
+/// Squared distance from p to the triangle (a, b, c). inside: whether its nearest point is
+/// interior to the face.
 double DistanceToTriangle2(const double* p, const double* a, const double* b, const double* c, bool& inside)
 {
-  inside = false;
-  double ab[3], ac[3], ap[3], closest[3];
+  const TrianglePoint nearest = ClosestOnTriangle(p, a, b, c);
+  inside = nearest.Interior;
+  double ab[3], ac[3], e[3];
   Sub(b, a, ab);
   Sub(c, a, ac);
-  Sub(p, a, ap);
-  const auto at = [&](double s, double t) {
-    for (int i = 0; i < 3; ++i)
-    {
-      closest[i] = a[i] + s * ab[i] + t * ac[i];
-    }
-  };
-  const double d1 = Dot(ab, ap), d2 = Dot(ac, ap);
-  double bp[3], cp[3];
-  Sub(p, b, bp);
-  Sub(p, c, cp);
-  const double d3 = Dot(ab, bp), d4 = Dot(ac, bp), d5 = Dot(ab, cp), d6 = Dot(ac, cp);
-  const double va = d3 * d6 - d5 * d4, vb = d5 * d2 - d1 * d6, vc = d1 * d4 - d3 * d2;
-  if (d1 <= 0 && d2 <= 0)
+  for (int i = 0; i < 3; ++i)
   {
-    at(0, 0);
+    e[i] = p[i] - (a[i] + nearest.S * ab[i] + nearest.T * ac[i]);
   }
-  else if (d3 >= 0 && d4 <= d3)
-  {
-    at(1, 0);
-  }
-  else if (d6 >= 0 && d5 <= d6)
-  {
-    at(0, 1);
-  }
-  else if (vc <= 0 && d1 >= 0 && d3 <= 0)
-  {
-    at(d1 / (d1 - d3), 0);
-  }
-  else if (vb <= 0 && d2 >= 0 && d6 <= 0)
-  {
-    at(0, d2 / (d2 - d6));
-  }
-  else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
-  {
-    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    at(1 - w, w);
-  }
-  else
-  {
-    const double denominator = va + vb + vc;
-    at(vb / denominator, vc / denominator);
-    inside = true;
-  }
-  double e[3];
-  Sub(p, closest, e);
   return Dot(e, e);
 }
 

@@ -11,6 +11,7 @@
 // the error measures (for profiling the simplifiers: they take most of the run otherwise);
 // --normal-weight sets SimplifyOptions::NormalWeight of the first variant (default: the
 // library's).
+#include "atpClosestPoint.h"
 #include "atpMergePatches.h"
 #include "atpSimplifier.h"
 #include "atpNormalEncoding.h"
@@ -142,33 +143,9 @@ double Dot(Vec a, Vec b)
 {
   return a.x * b.x + a.y * b.y + a.z * b.z;
 }
-
-/// Closest point on triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5).
-Vec ClosestOnTriangle(Vec p, Vec a, Vec b, Vec c)
+std::array<double, 3> Coordinates(Vec a)
 {
-  const Vec ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = Dot(ab, ap), d2 = Dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0)
-    return a;
-  const Vec bp = p - b;
-  const double d3 = Dot(ab, bp), d4 = Dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3)
-    return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0)
-    return a + (d1 / (d1 - d3)) * ab;
-  const Vec cp = p - c;
-  const double d5 = Dot(ab, cp), d6 = Dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6)
-    return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0)
-    return a + (d2 / (d2 - d6)) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-    return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
-  const double denom = 1 / (va + vb + vc);
-  return a + (vb * denom) * ab + (vc * denom) * ac;
+  return { a.x, a.y, a.z };
 }
 
 /// Triangles binned in a uniform grid, for nearest-surface queries.
@@ -244,7 +221,7 @@ public:
   {
     double Distance = 0;
     std::uint32_t Triangle = 0;
-    Vec Point{ 0, 0, 0 };
+    TrianglePoint Point; ///< where on Triangle
   };
 
   double Distance(Vec p) { return Nearest(p).Distance; }
@@ -273,12 +250,15 @@ public:
               if (Stamp[t] == Query)
                 continue;
               Stamp[t] = Query;
-              const Vec q = ClosestOnTriangle(p, Corner(t, 0), Corner(t, 1), Corner(t, 2));
+              const Vec a = Corner(t, 0), b = Corner(t, 1), c = Corner(t, 2);
+              const TrianglePoint nearest = ClosestOnTriangle(
+                Coordinates(p).data(), Coordinates(a).data(), Coordinates(b).data(), Coordinates(c).data());
+              const Vec q = a + nearest.S * (b - a) + nearest.T * (c - a);
               if (Dot(q - p, q - p) < best)
               {
                 best = Dot(q - p, q - p);
                 hit.Triangle = t;
-                hit.Point = q;
+                hit.Point = nearest;
               }
             }
           }
@@ -381,14 +361,7 @@ double MeanNormalAngle(const std::vector<float>& positions, const std::vector<fl
     }
     seen[v] = true;
     const SurfaceGrid::Hit hit = grid.Nearest({ positions[3 * v], positions[3 * v + 1], positions[3 * v + 2] });
-    const Vec a = grid.Corner(hit.Triangle, 0), ab = grid.Corner(hit.Triangle, 1) - a,
-              ac = grid.Corner(hit.Triangle, 2) - a, ap = hit.Point - a;
-    // Barycentric coordinates of the nearest point (Ericson 3.4).
-    const double d00 = Dot(ab, ab), d01 = Dot(ab, ac), d11 = Dot(ac, ac), d20 = Dot(ap, ab), d21 = Dot(ap, ac);
-    const double denominator = d00 * d11 - d01 * d01;
-    const double wb = denominator > 0 ? (d11 * d20 - d01 * d21) / denominator : 0;
-    const double wc = denominator > 0 ? (d00 * d21 - d01 * d20) / denominator : 0;
-    const double weights[3] = { 1 - wb - wc, wb, wc };
+    const double weights[3] = { 1 - hit.Point.S - hit.Point.T, hit.Point.S, hit.Point.T };
     Vec n{ 0, 0, 0 };
     for (int k = 0; k < 3; ++k)
     {

@@ -1,5 +1,7 @@
-// The constrained simplifier, its quadrics, its collapse queues and the patch merge: locked and original
-// boundaries, topology, quotas, triangle quality, exact vertices, determinism, error.
+// The constrained simplifier, its quadrics, its collapse queues, the patch merge and the nearest
+// point of a triangle: locked and original boundaries, topology, quotas, triangle quality, exact
+// vertices, determinism, error.
+#include "atpClosestPoint.h"
 #include "atpCollapseQueues.h"
 #include "atpMergePatches.h"
 #include "atpQuadric.h"
@@ -966,4 +968,66 @@ TEST(Quadric, AddingToCornersAddsToEachRecord)
     EXPECT_EQ(b[i], -double(i) + r[i]);
     EXPECT_EQ(c[i], 3 + r[i]);
   }
+}
+
+// Against a dense sampling of each triangle: nothing sampled is nearer than the point found,
+// which lies on the triangle, inside it exactly when it says so. Points near corners, edges and
+// the face, of thin and obtuse triangles as well.
+TEST(ClosestPoint, NoSampleOfTheTriangleIsNearer)
+{
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> coordinate(-1, 1);
+  int interiors = 0, borders = 0;
+  for (int trial = 0; trial < 300; ++trial)
+  {
+    double corner[3][3], p[3];
+    for (auto& c : corner)
+    {
+      for (double& x : c)
+      {
+        x = coordinate(random);
+      }
+    }
+    if (trial % 3 == 0) // a sliver: c almost on the line through a and b
+    {
+      for (int i = 0; i < 3; ++i)
+      {
+        corner[2][i] = 0.3 * corner[0][i] + 0.7 * corner[1][i] + 0.01 * coordinate(random);
+      }
+    }
+    for (double& x : p)
+    {
+      x = coordinate(random);
+    }
+    const TrianglePoint found = ClosestOnTriangle(p, corner[0], corner[1], corner[2]);
+    ASSERT_GE(found.S, 0.0);
+    ASSERT_GE(found.T, 0.0);
+    ASSERT_LE(found.S + found.T, 1.0 + 1e-12);
+    const auto at = [&](double s, double t, double q[3]) {
+      for (int i = 0; i < 3; ++i)
+      {
+        q[i] = corner[0][i] + s * (corner[1][i] - corner[0][i]) + t * (corner[2][i] - corner[0][i]);
+      }
+    };
+    const auto distance2 = [&](const double q[3]) {
+      return (q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1]) + (q[2] - p[2]) * (q[2] - p[2]);
+    };
+    double q[3];
+    at(found.S, found.T, q);
+    const double foundDistance2 = distance2(q);
+    const int n = 200;
+    for (int i = 0; i <= n; ++i)
+    {
+      for (int j = 0; i + j <= n; ++j)
+      {
+        at(double(i) / n, double(j) / n, q);
+        ASSERT_GE(distance2(q), foundDistance2 - 1e-12) << "trial " << trial;
+      }
+    }
+    const bool onBorder = found.S == 0 || found.T == 0 || std::abs(found.S + found.T - 1) < 1e-12;
+    EXPECT_NE(found.Interior, onBorder) << "trial " << trial;
+    (found.Interior ? interiors : borders) += 1;
+  }
+  EXPECT_GT(interiors, 10);
+  EXPECT_GT(borders, 10);
 }
