@@ -77,26 +77,6 @@ PatchJobResult MakeLeafPatch(const PatchJobContext& context, const PatchJob& job
   return result;
 }
 
-/// A member keeps at most the budget, and at most half of what its two children hold: every
-/// level then halves the triangles, as one bisection halves the volume, also where the leaves
-/// are far below the budget (a level that kept 3/4 of its children's triangles would cost
-/// nearly a copy of the finer level in the file and be drawn almost never).
-std::vector<std::uint32_t> MemberQuotas(const PatchJob& job, std::uint32_t budget)
-{
-  const std::size_t childrenPerMember = job.Children.size() / job.Members.size();
-  std::vector<std::uint32_t> quotas(job.Members.size());
-  for (std::size_t m = 0; m < quotas.size(); ++m)
-  {
-    std::size_t children = 0;
-    for (std::size_t c = 0; c < childrenPerMember; ++c)
-    {
-      children += job.Children[childrenPerMember * m + c].TriangleCount();
-    }
-    quotas[m] = std::uint32_t(std::min<std::size_t>(budget, (children + 1) / 2));
-  }
-  return quotas;
-}
-
 /// Merges the children's patches and simplifies them with the diamond's external boundary
 /// locked and one quota per member.
 PatchJobResult SimplifyDiamond(const PatchJobContext& context, PatchJob& job)
@@ -129,6 +109,25 @@ PatchJobResult SimplifyDiamond(const PatchJobContext& context, PatchJob& job)
 }
 
 } // namespace
+
+// Every level halves the triangles, as one bisection halves the volume, also where the leaves
+// are far below the budget: a level that kept 3/4 of its children's triangles would cost nearly
+// a copy of the finer level in the file and be drawn almost never.
+std::vector<std::uint32_t> MemberQuotas(const PatchJob& job, std::uint32_t budget)
+{
+  const std::size_t childrenPerMember = job.Children.size() / job.Members.size();
+  std::vector<std::uint32_t> quotas(job.Members.size());
+  for (std::size_t m = 0; m < quotas.size(); ++m)
+  {
+    std::size_t children = 0;
+    for (std::size_t c = 0; c < childrenPerMember; ++c)
+    {
+      children += job.Children[childrenPerMember * m + c].TriangleCount();
+    }
+    quotas[m] = std::uint32_t(std::min<std::size_t>(budget, (children + 1) / 2));
+  }
+  return quotas;
+}
 
 PatchJobContext::PatchJobContext(const Box& bounds, std::uint32_t patchBudget, bool colors)
   : Bounds(bounds)

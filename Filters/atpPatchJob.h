@@ -68,6 +68,11 @@ struct PatchJobResult
   bool QuotasMet = true;
 };
 
+/// The most triangles each member of a diamond job keeps: the budget, and at most half of what
+/// its two children hold. (atp-bench-simplify gives the simplifiers a build's diamonds with
+/// these.)
+VTKATPFILTERS_EXPORT std::vector<std::uint32_t> MemberQuotas(const PatchJob& job, std::uint32_t budget);
+
 /// Runs one job, freeing its inputs as soon as they are merged. Throws std::exception on
 /// failure (e.g. an inconsistent mesh).
 VTKATPFILTERS_EXPORT PatchJobResult MakePatches(const PatchJobContext& context, PatchJob job);

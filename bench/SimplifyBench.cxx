@@ -1,21 +1,31 @@
-// Our constrained simplifier against meshopt_simplify (meshoptimizer 0.18, LockBorder) on
-// diamond-like chunks of a real mesh: speed (triangles removed per second) and the symmetric,
-// sampled Hausdorff distance between input and output, relative to the chunk's box diagonal.
-//   atp-bench-simplify [MESH] [CHUNK_TRIANGLES] [CHUNKS] [--speed-only] [--normal-weight=W]
-// MESH defaults to Data/bumpy-torus.ply; for chunks the size of a real diamond (2-8 members x 2
-// children x 1000-4000 triangles) of a larger mesh:
-//   atp generate -n 2000000 -o /tmp/g.ply && atp-bench-simplify /tmp/g.ply 16000 6
-// A chunk is the set of triangles whose centroid lies in
-// a box around a mesh vertex: its cut border is the "diamond-external" boundary (locked by both
-// simplifiers), the input's own holes inside it are the original boundary. --speed-only skips
-// the error measures (for profiling the simplifiers: they take most of the run otherwise);
-// --normal-weight sets SimplifyOptions::NormalWeight of the first variant (default: the
-// library's).
+// Our constrained simplifier against meshopt_simplify (meshoptimizer 0.18, LockBorder): speed
+// (triangles removed per second) and the symmetric, sampled Hausdorff distance between input and
+// output, relative to the input's box diagonal, on either of
+// - diamond-like chunks of a mesh:
+//     atp-bench-simplify [MESH] [CHUNK_TRIANGLES] [CHUNKS] [options]
+//   MESH defaults to Data/bumpy-torus.ply; for chunks the size of a real diamond (2-8 members x
+//   2 children x 1000-4000 triangles) of a larger mesh:
+//     atp generate -n 2000000 -o /tmp/g.ply && atp-bench-simplify /tmp/g.ply 16000 6
+//   A chunk is the set of triangles whose centroid lies in a box around a mesh vertex: its cut
+//   border is the "diamond-external" boundary (locked by both simplifiers), the input's own
+//   holes inside it are the original boundary. Ours halves it as one region.
+// - the diamonds of a build of MESH, up to N of each level (--diamonds=N): each exactly what the
+//   build hands our simplifier (its children's patches merged, one region per member, the
+//   build's quotas); meshoptimizer, which has no regions, gets the sum of the quotas.
+// --speed-only skips the error measures (for profiling the simplifiers: they take most of the
+// run otherwise); --normal-weight=W sets SimplifyOptions::NormalWeight of the first variant
+// (default: the library's).
 #include "atpClosestPoint.h"
+#include "atpMemberLocator.h"
 #include "atpMergePatches.h"
+#include "atpPatchJob.h"
+#include "atpPatchJobRunner.h"
 #include "atpSimplifier.h"
 #include "atpNormalEncoding.h"
 #include "atpTriangleSource.h"
+#include "vtkATPBuilder.h"
+
+#include <vtkNew.h>
 
 #include <meshoptimizer.h>
 
@@ -28,7 +38,10 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <stdexcept>
 #include <vector>
+
+#include <unistd.h>
 
 using namespace atp;
 
@@ -403,14 +416,14 @@ double Time(Run run)
   return best;
 }
 
-/// The output of our simplifier as indices into the chunk's vertices (each output vertex is
+/// The output of our simplifier as indices into its input's vertices (each output vertex is
 /// an input vertex, found by its position).
-std::vector<std::uint32_t> ToChunkIndices(const PatchMesh& chunk, const SimplifyResult& result)
+std::vector<std::uint32_t> ToInputIndices(const PatchMesh& input, const SimplifyResult& result)
 {
   std::map<std::array<float, 3>, std::uint32_t> index;
-  for (std::uint32_t v = 0; v < chunk.VertexCount(); ++v)
+  for (std::uint32_t v = 0; v < input.VertexCount(); ++v)
   {
-    index[{ chunk.Positions[3 * v], chunk.Positions[3 * v + 1], chunk.Positions[3 * v + 2] }] = v;
+    index[{ input.Positions[3 * v], input.Positions[3 * v + 1], input.Positions[3 * v + 2] }] = v;
   }
   std::vector<std::uint32_t> out;
   for (const PatchMesh& region : result.Regions)
@@ -435,19 +448,156 @@ void Print(const char* name, std::size_t in, const Row& row)
     double(in - row.Out) / row.Seconds / 1e6, row.Hausdorff, row.NormalAngle);
 }
 
+/// One input for the simplifiers: ours keeps each region within its quota, meshoptimizer
+/// (which has no regions) the whole within their sum.
+struct Case
+{
+  std::string Title;
+  PatchMesh Mesh;
+  int Regions = 1;
+  RegionFunction RegionOf = [](const double*, int) { return 0; };
+  std::vector<std::uint32_t> Quotas;
+};
+
+/// Chunks of `mesh`, each of about `target` triangles around a vertex, to be halved.
+std::vector<Case> Chunks(const PatchMesh& mesh, std::size_t target, int chunks)
+{
+  std::vector<Case> cases;
+  for (int c = 0; c < chunks; ++c)
+  {
+    const std::uint32_t seed = std::uint32_t((2 * c + 1) * mesh.VertexCount() / std::size_t(2 * chunks));
+    const float* center = &mesh.Positions[3 * std::size_t(seed)];
+    // Box size by bisection, for about `target` triangles.
+    double lo = 0, hi = Diagonal(mesh);
+    Case chunk;
+    for (int i = 0; i < 40; ++i)
+    {
+      const double half = 0.5 * (lo + hi);
+      chunk.Mesh = Cut(mesh, center, half);
+      if (chunk.Mesh.TriangleCount() * 10 < target * 9)
+        lo = half;
+      else if (chunk.Mesh.TriangleCount() * 10 > target * 11)
+        hi = half;
+      else
+        break;
+    }
+    const auto open = CountOpenEdges(chunk.Mesh);
+    chunk.Quotas = { std::uint32_t(chunk.Mesh.TriangleCount() / 2) };
+    chunk.Title = "chunk " + std::to_string(c) + ": " + std::to_string(chunk.Mesh.TriangleCount()) +
+      " triangles, " + std::to_string(open.second) + " cut (locked) edges, " + std::to_string(open.first) +
+      " hole edges -> quota " + std::to_string(chunk.Quotas[0]);
+    cases.push_back(std::move(chunk));
+  }
+  return cases;
+}
+
+/// Runs a build's jobs on this process's threads, keeping a copy of up to `perLevel` diamond
+/// jobs of each level, spread over it: the simplifier's inputs exactly as the build gives them.
+class RecordingRunner final : public PatchJobRunner
+{
+public:
+  explicit RecordingRunner(std::size_t perLevel)
+    : PerLevel(perLevel)
+  {
+  }
+  void Begin(const PatchJobContext& context) override
+  {
+    Context = std::make_unique<PatchJobContext>(context);
+    Threads->Begin(context);
+  }
+  void Run(std::size_t count, const LoadJob& load, const StoreResult& store) override
+  {
+    const std::size_t step = std::max<std::size_t>(1, count / PerLevel);
+    bool diamonds = false;
+    Threads->Run(
+      count,
+      [&](std::size_t i, PatchJob& job) {
+        load(i, job);
+        diamonds = diamonds || !job.IsLeaf();
+        if (!job.IsLeaf() && i % step == 0 && i / step < PerLevel)
+        {
+          Jobs.push_back(job);
+          Levels.push_back(DiamondLevels + 1);
+        }
+      },
+      store);
+    DiamondLevels += diamonds;
+  }
+
+  std::unique_ptr<PatchJobContext> Context;
+  std::vector<PatchJob> Jobs;
+  /// Per job: its level counted from the finest that simplifies (1) to the roots'.
+  std::vector<int> Levels;
+
+private:
+  std::size_t PerLevel;
+  std::unique_ptr<PatchJobRunner> Threads = MakeThreadJobRunner(0);
+  int DiamondLevels = 0;
+};
+
+/// Diamonds of a build of the mesh at `path`, up to `perLevel` of each level: their children's
+/// patches merged, one region per member, the build's quotas.
+std::vector<Case> Diamonds(const std::string& path, std::size_t perLevel)
+{
+  RecordingRunner runner(perLevel);
+  const std::string model = "/tmp/atp-bench-simplify-" + std::to_string(::getpid()) + ".atp";
+  vtkNew<vtkATPBuilder> builder;
+  builder->SetInputFileName(path.c_str());
+  builder->SetFileName(model.c_str());
+  builder->SetScratchDirectory("/tmp");
+  builder->SetJobRunner(&runner);
+  const int built = builder->Build();
+  std::remove(model.c_str());
+  if (!built)
+  {
+    throw std::runtime_error(std::string("the build failed: ") + builder->GetErrorMessage());
+  }
+  std::vector<Case> cases;
+  for (std::size_t j = 0; j < runner.Jobs.size(); ++j)
+  {
+    const PatchJob& job = runner.Jobs[j];
+    Case diamond;
+    std::vector<const PatchMesh*> parts;
+    for (const PatchMesh& child : job.Children)
+    {
+      parts.push_back(&child);
+    }
+    diamond.Mesh = MergePatches(parts);
+    diamond.Regions = int(job.Members.size());
+    const auto locator = std::make_shared<MemberLocator>(job.Members, runner.Context->Frame);
+    diamond.RegionOf = [locator](const double p[3], int likely) { return locator->MemberOf(p, likely); };
+    diamond.Quotas = MemberQuotas(job, runner.Context->PatchBudget);
+    const auto open = CountOpenEdges(diamond.Mesh);
+    std::string quotas;
+    for (const std::uint32_t q : diamond.Quotas)
+    {
+      quotas += (quotas.empty() ? "" : " ") + std::to_string(q);
+    }
+    diamond.Title = "diamond, level " + std::to_string(runner.Levels[j]) + " up: " +
+      std::to_string(diamond.Mesh.TriangleCount()) + " triangles, " + std::to_string(open.second) +
+      " locked edges, " + std::to_string(open.first) + " hole edges, " + std::to_string(diamond.Regions) +
+      " members -> quotas " + quotas;
+    cases.push_back(std::move(diamond));
+  }
+  return cases;
+}
+
 } // namespace
 
 int main(int argc, char** argv)
 {
-  const std::string path = argc > 1 ? argv[1] : ATP_DATA_DIR "/bumpy-torus.ply";
-  const std::size_t target = argc > 2 ? std::stoul(argv[2]) : 12000;
-  const int chunks = argc > 3 ? std::stoi(argv[3]) : 6;
+  std::vector<std::string> positional;
   bool measureError = true;
   double normalWeight = SimplifyOptions().NormalWeight;
-  for (int i = 4; i < argc; ++i)
+  std::size_t diamondsPerLevel = 0;
+  for (int i = 1; i < argc; ++i)
   {
     const std::string option = argv[i];
-    if (option == "--speed-only")
+    if (option.rfind("--", 0) != 0)
+    {
+      positional.push_back(option);
+    }
+    else if (option == "--speed-only")
     {
       measureError = false;
     }
@@ -455,95 +605,120 @@ int main(int argc, char** argv)
     {
       normalWeight = std::stod(option.substr(16));
     }
+    else if (option.rfind("--diamonds=", 0) == 0)
+    {
+      diamondsPerLevel = std::stoul(option.substr(11));
+    }
     else
     {
       std::fprintf(stderr, "unknown option %s\n", option.c_str());
       return 1;
     }
   }
-  const PatchMesh mesh = Load(path);
-  std::printf("mesh %s: %zu vertices, %zu triangles; %d chunks of ~%zu triangles, each halved\n",
-    path.c_str(), mesh.VertexCount(), mesh.TriangleCount(), chunks, target);
-  std::printf("meshopt_simplify (meshoptimizer %d.%d) runs with meshopt_SimplifyLockBorder and target_error 1:\n"
-              "LockBorder also locks the input's own holes, which our simplifier may simplify along.\n"
-              "Hausdorff: symmetric, sampled, relative to the chunk's box diagonal. Normal: the mean\n"
+  const std::string path = positional.size() > 0 ? positional[0] : ATP_DATA_DIR "/bumpy-torus.ply";
+  const std::size_t target = positional.size() > 1 ? std::stoul(positional[1]) : 12000;
+  const int chunks = positional.size() > 2 ? std::stoi(positional[2]) : 6;
+  std::vector<Case> cases;
+  try
+  {
+    if (diamondsPerLevel > 0)
+    {
+      cases = Diamonds(path, diamondsPerLevel);
+      std::printf("mesh %s: %zu diamonds of its build, up to %zu a level\n", path.c_str(), cases.size(),
+        diamondsPerLevel);
+    }
+    else
+    {
+      const PatchMesh mesh = Load(path);
+      std::printf("mesh %s: %zu vertices, %zu triangles; %d chunks of ~%zu triangles, each halved\n",
+        path.c_str(), mesh.VertexCount(), mesh.TriangleCount(), chunks, target);
+      cases = Chunks(mesh, target, chunks);
+    }
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "atp-bench-simplify: %s\n", e.what());
+    return 1;
+  }
+  std::printf("meshopt_simplify (meshoptimizer %d.%d) runs with meshopt_SimplifyLockBorder and target_error 1,\n"
+              "to the sum of the quotas (it has no regions). LockBorder also locks the input's own holes,\n"
+              "which our simplifier may simplify along.\n"
+              "Hausdorff: symmetric, sampled, relative to the input's box diagonal. Normal: the mean\n"
               "angle (degrees) between each input vertex's normal and the output's interpolated\n"
               "normal at its nearest point. Ours weighs normals by %g.\n\n",
     MESHOPTIMIZER_VERSION / 1000, MESHOPTIMIZER_VERSION % 1000 / 10, normalWeight);
 
-  Row sum[3];
+  // With several regions, ours also runs as meshoptimizer does, to the sum of the quotas in
+  // one region: what the per-member quotas cost apart from the simplifier itself.
+  const bool regions = std::any_of(cases.begin(), cases.end(), [](const Case& c) { return c.Regions > 1; });
+  const int variants = regions ? 4 : 3;
+  Row sum[4];
   std::size_t sumIn = 0;
-  const char* names[3] = { "ours (normals weighted)", "ours (positions only)", "meshopt LockBorder" };
-  for (int c = 0; c < chunks; ++c)
+  const char* names[4] = { "ours (normals weighted)", "ours (positions only)", "meshopt LockBorder",
+    "ours, quotas summed" };
+  for (const Case& input : cases)
   {
-    const std::uint32_t seed = std::uint32_t((2 * c + 1) * mesh.VertexCount() / std::size_t(2 * chunks));
-    const float* center = &mesh.Positions[3 * std::size_t(seed)];
-    // Box size by bisection, for about `target` triangles.
-    double lo = 0, hi = Diagonal(mesh);
-    PatchMesh chunk;
-    for (int i = 0; i < 40; ++i)
+    const PatchMesh& mesh = input.Mesh;
+    std::uint32_t total = 0;
+    for (const std::uint32_t q : input.Quotas)
     {
-      const double half = 0.5 * (lo + hi);
-      chunk = Cut(mesh, center, half);
-      if (chunk.TriangleCount() * 10 < target * 9)
-        lo = half;
-      else if (chunk.TriangleCount() * 10 > target * 11)
-        hi = half;
-      else
-        break;
+      total += q;
     }
-    const auto open = CountOpenEdges(chunk);
-    const std::uint32_t quota = std::uint32_t(chunk.TriangleCount() / 2);
-    const double diagonal = Diagonal(chunk);
-    // Relative to the chunk's diagonal; 0 (not sampled) with --speed-only.
+    const double diagonal = Diagonal(mesh);
+    // Relative to the input's diagonal; 0 (not sampled) with --speed-only.
     const auto measure = [&](const std::vector<std::uint32_t>& out, Row& row) {
       row.Out = out.size() / 3;
       if (measureError)
       {
-        row.Hausdorff = Hausdorff(chunk.Positions, chunk.Indices, out) / diagonal;
-        row.NormalAngle = MeanNormalAngle(chunk.Positions, chunk.Normals, chunk.Indices, out);
+        row.Hausdorff = Hausdorff(mesh.Positions, mesh.Indices, out) / diagonal;
+        row.NormalAngle = MeanNormalAngle(mesh.Positions, mesh.Normals, mesh.Indices, out);
       }
     };
-    std::printf("chunk %d: %zu triangles, %zu cut (locked) edges, %zu hole edges -> quota %u\n", c,
-      chunk.TriangleCount(), open.second, open.first, quota);
+    std::printf("%s\n", input.Title.c_str());
     std::printf("  %-26s %7s %9s %12s %14s %10s\n", "", "out", "ms", "Mtri/s rem.", "Hausdorff/diag", "normal°");
 
-    Row rows[3];
-    for (int variant = 0; variant < 2; ++variant)
+    Row rows[4];
+    for (int variant : { 0, 1, 3 })
     {
+      if (variant >= variants)
+      {
+        continue;
+      }
       SimplifyOptions options;
       options.NormalWeight = variant == 1 ? 0 : normalWeight;
       SimplifyResult result;
       rows[variant].Seconds = Time([&] {
-        result = Simplify(chunk, 1, [](const double*, int) { return 0; }, { quota }, options);
+        result = variant == 3
+          ? Simplify(mesh, 1, [](const double*, int) { return 0; }, { total }, options)
+          : Simplify(mesh, input.Regions, input.RegionOf, input.Quotas, options);
       });
-      measure(ToChunkIndices(chunk, result), rows[variant]);
+      measure(ToInputIndices(mesh, result), rows[variant]);
     }
-    std::vector<std::uint32_t> out(chunk.Indices.size());
+    std::vector<std::uint32_t> out(mesh.Indices.size());
     std::size_t count = 0;
     rows[2].Seconds = Time([&] {
-      count = meshopt_simplify(out.data(), chunk.Indices.data(), chunk.Indices.size(), chunk.Positions.data(),
-        chunk.VertexCount(), 3 * sizeof(float), 3 * std::size_t(quota), 1.0f, meshopt_SimplifyLockBorder, nullptr);
+      count = meshopt_simplify(out.data(), mesh.Indices.data(), mesh.Indices.size(), mesh.Positions.data(),
+        mesh.VertexCount(), 3 * sizeof(float), 3 * std::size_t(total), 1.0f, meshopt_SimplifyLockBorder, nullptr);
     });
     out.resize(count);
     measure(out, rows[2]);
-    for (int v = 0; v < 3; ++v)
+    for (int v = 0; v < variants; ++v)
     {
-      Print(names[v], chunk.TriangleCount(), rows[v]);
+      Print(names[v], mesh.TriangleCount(), rows[v]);
       sum[v].Out += rows[v].Out;
       sum[v].Seconds += rows[v].Seconds;
-      sum[v].Hausdorff += rows[v].Hausdorff / chunks;
-      sum[v].NormalAngle += rows[v].NormalAngle / chunks;
+      sum[v].Hausdorff += rows[v].Hausdorff / double(cases.size());
+      sum[v].NormalAngle += rows[v].NormalAngle / double(cases.size());
     }
-    sumIn += chunk.TriangleCount();
+    sumIn += mesh.TriangleCount();
   }
-  std::printf("\nall chunks (time and rate summed, errors averaged):\n");
+  std::printf("\nall inputs (time and rate summed, errors averaged):\n");
   std::printf("  %-26s %7s %9s %12s %14s %10s\n", "", "out", "ms", "Mtri/s rem.", "Hausdorff/diag", "normal°");
-  for (int v = 0; v < 3; ++v)
+  for (int v = 0; v < variants; ++v)
   {
     Print(names[v], sumIn, sum[v]);
   }
-  // Both run in the same process, chunk after chunk: the ratio holds still where this machine's
+  // Both run in the same process, input after input: the ratio holds still where this machine's
   // speed drifts (by 25-50% within minutes), so runs of different builds compare by it.
   std::printf("time against meshopt_simplify's: %.3fx with normals, %.3fx on positions\n",
     sum[0].Seconds / sum[2].Seconds, sum[1].Seconds / sum[2].Seconds);
