@@ -692,8 +692,9 @@ void Simplifier::BuildQuadrics()
 // u -> v is legal when: the edge is manifold (1 or 2 triangles), the link condition holds (the
 // only common neighbors are the opposite corners), no edge from v to an opposite corner is
 // non-manifold, no triangle is removed with both other edges open (an isolated triangle would
-// vanish), the mesh is not a tetrahedron-like pocket (a moved triangle would duplicate one of
-// v), and no moved triangle flips, degenerates, faces against its corners' input normals or,
+// vanish), u and v do not share all their triangles (two triangles back to back would vanish,
+// leaving v none to measure its error against), the mesh is not a tetrahedron-like pocket (a
+// moved triangle would duplicate one of v), and no moved triangle flips, degenerates, faces against its corners' input normals or,
 // before the regions run out of other collapses, within 10 degrees of edge-on to them.
 // Fan must hold u's fan. The geometric tests come first: they reject most candidates (flips and
 // normals, 4 in 10 on the brain) and need no walk around v.
@@ -753,7 +754,9 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
   }
 
   ++StampV;
+  std::size_t vTriangles = 0;
   ForEachCorner(v, [&](std::uint32_t t, int k) {
+    ++vTriangles;
     for (std::uint32_t x : { Faces[t].V[NextCorner(k)], Faces[t].V[PrevCorner(k)] })
     {
       if (MarkV[x] != StampV)
@@ -764,6 +767,10 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
       ++CountV[x];
     }
   });
+  if (Fan.size() == std::size_t(opposites) && vTriangles == std::size_t(opposites))
+  {
+    return false; // u and v share all their triangles: v would be left with none
+  }
   ++StampU;
   bool movesPocket = false;
   for (std::uint32_t c : Fan)

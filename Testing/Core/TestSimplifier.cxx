@@ -408,6 +408,33 @@ TEST(Simplifier, NonManifoldAndMisorientedVerticesNeverMove)
   }
 }
 
+// Two triangles back to back with no other neighbors (a closed component of no volume, which a
+// coarse level can leave behind): collapsing one of its corners would take both triangles and
+// leave the vertex it collapsed into with none, its error measured against nothing.
+TEST(Simplifier, TwoTrianglesBackToBackStay)
+{
+  PatchMesh mesh = Grid(20, Bumps, true);
+  const std::uint32_t first = std::uint32_t(mesh.VertexCount());
+  mesh.Positions.insert(mesh.Positions.end(), { 2.0f, 0.0f, 0.0f, 2.1f, 0.0f, 0.0f, 2.0f, 0.1f, 0.0f });
+  mesh.Indices.insert(mesh.Indices.end(), { first, first + 1, first + 2, first + 2, first + 1, first });
+  ComputeNormals(mesh);
+  MarkOpenEdges(mesh, true);
+  // Collapsing the pair would cost nothing: both corners lie in the planes of both triangles.
+  const SimplifyResult result = Simplify(mesh, 1, OneRegion(), { 200 });
+  EXPECT_TRUE(result.QuotasMet);
+  EXPECT_LT(result.Error, 0.05);
+  const PatchMesh out = Joined(result);
+  std::size_t kept = 0;
+  for (std::uint32_t v = first; v < first + 3; ++v)
+  {
+    for (std::uint32_t w = 0; w < out.VertexCount(); ++w)
+    {
+      kept += KeyOf(out, w) == KeyOf(mesh, v);
+    }
+  }
+  EXPECT_EQ(kept, 3u);
+}
+
 TEST(Simplifier, ClosedMeshStaysClosed)
 {
   const PatchMesh mesh = BumpyTorus(96, 48);
