@@ -300,6 +300,12 @@ private:
   /// The least cosine between a moved face and its corners' input normals: FinCosine, then 0
   /// once the regions over quota have nothing else left.
   double MinFacing = FinCosine;
+  /// Whether moved faces are held to their corners' input normals at all: given up last, when
+  /// the regions over quota have nothing else left even with fins. At the coarse levels the
+  /// input normals of the few vertices kept no longer describe the surface (on the brain they
+  /// stopped all but 23 of the coarsest diamond's 15,690 collapses needed), and a patch over
+  /// its budget is the worse evil: it costs every frame that draws it.
+  bool FacingChecked = true;
 
   // Scratch, reused by every collapse: stamps make clearing unnecessary.
   FanView Fan;
@@ -694,8 +700,10 @@ void Simplifier::BuildQuadrics()
 // non-manifold, no triangle is removed with both other edges open (an isolated triangle would
 // vanish), u and v do not share all their triangles (two triangles back to back would vanish,
 // leaving v none to measure its error against), the mesh is not a tetrahedron-like pocket (a
-// moved triangle would duplicate one of v), and no moved triangle flips, degenerates, faces against its corners' input normals or,
-// before the regions run out of other collapses, within 10 degrees of edge-on to them.
+// moved triangle would duplicate one of v), and no moved triangle flips or degenerates. Nor may a
+// moved triangle face within 10 degrees of edge-on to its corners' input normals (before the
+// regions over quota run out of other collapses) or against them (before they run out of those
+// too).
 // Fan must hold u's fan. The geometric tests come first: they reject most candidates (flips and
 // normals, 4 in 10 on the brain) and need no walk around v.
 bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
@@ -735,7 +743,7 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
     }
     // Small turns, each allowed, add up to folds: the face must also agree with the input
     // normals of its corners (which it keeps for shading).
-    if (HasNormals)
+    if (HasNormals && FacingChecked)
     {
       for (std::uint32_t z : { v, x, y })
       {
@@ -1167,13 +1175,21 @@ SimplifyResult Simplifier::Run()
         }
         continue;
       }
-      if (MinFacing == 0) // the guard is off already: nothing legal is left at all
+      if (!FacingChecked) // the guards are off already: nothing legal is left at all
       {
         break;
       }
-      // Still over quota with no legal collapse left: a fin is a lesser evil than a patch over
-      // its budget. Every vertex is priced again without the guard.
-      MinFacing = 0;
+      // Still over quota with no legal collapse left: a fin, and then a face against its
+      // corners' normals, are lesser evils than a patch over its budget. Every vertex is priced
+      // again with the guard relaxed.
+      if (MinFacing > 0)
+      {
+        MinFacing = 0;
+      }
+      else
+      {
+        FacingChecked = false;
+      }
       for (std::uint32_t v = 0; v < VertexCount; ++v)
       {
         Evaluate(v, false);

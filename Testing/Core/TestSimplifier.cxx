@@ -790,22 +790,25 @@ double LeastFacingOfNewFaces(const PatchMesh& in, const PatchMesh& out)
   return least;
 }
 
+/// A plane whose normals lean away from its faces by `degrees` where x < 1/2 (upright
+/// elsewhere): a collapse there leaves faces at that angle from their corners' normals.
+PatchMesh PlaneWithLeaningNormals(double degrees)
+{
+  PatchMesh mesh = Grid(20, [](double, double) { return 0.25; }, false);
+  const double radians = degrees * 3.14159265358979323846 / 180;
+  for (std::size_t v = 0; v < mesh.VertexCount(); ++v)
+  {
+    const bool leans = mesh.Positions[3 * v] < 0.5f;
+    mesh.Normals[3 * v] = leans ? float(std::sin(radians)) : 0.0f;
+    mesh.Normals[3 * v + 1] = 0;
+    mesh.Normals[3 * v + 2] = leans ? float(std::cos(radians)) : 1.0f;
+  }
+  return mesh;
+}
+
 TEST(Simplifier, FacesNearlyEdgeOnToTheirNormalsOnlyWhenAQuotaNeedsThem)
 {
-  // A plane whose normals lean away from its faces by `degrees` where x < 1/2 (upright
-  // elsewhere): a collapse there leaves faces at that angle from their corners' normals.
-  const auto leaning = [](double degrees) {
-    PatchMesh mesh = Grid(20, [](double, double) { return 0.25; }, false);
-    const double radians = degrees * 3.14159265358979323846 / 180;
-    for (std::size_t v = 0; v < mesh.VertexCount(); ++v)
-    {
-      const bool leans = mesh.Positions[3 * v] < 0.5f;
-      mesh.Normals[3 * v] = leans ? float(std::sin(radians)) : 0.0f;
-      mesh.Normals[3 * v + 1] = 0;
-      mesh.Normals[3 * v + 2] = leans ? float(std::cos(radians)) : 1.0f;
-    }
-    return mesh;
-  };
+  const auto leaning = PlaneWithLeaningNormals;
   const double cos80 = std::cos(80 * 3.14159265358979323846 / 180);
   // 800 triangles to 600: the upright half alone can give up 200.
   const PatchMesh steep = leaning(85);
@@ -826,6 +829,39 @@ TEST(Simplifier, FacesNearlyEdgeOnToTheirNormalsOnlyWhenAQuotaNeedsThem)
   const double facing = LeastFacingOfNewFaces(moderate, Joined(fine));
   EXPECT_GT(facing, cos80);
   EXPECT_LT(facing, std::cos(70 * 3.14159265358979323846 / 180)) << "no new face where the normals lean";
+}
+
+// Where the normals lean past 90 degrees, every collapse leaves faces against them: taken only
+// when the quota cannot be met without them, fins or not.
+TEST(Simplifier, FacesAgainstTheirNormalsOnlyAsALastResort)
+{
+  // x < 1/4 leans 100 degrees, 1/4 <= x < 1/2 85 degrees, the rest is upright.
+  PatchMesh against = PlaneWithLeaningNormals(85);
+  const double radians = 100 * 3.14159265358979323846 / 180;
+  for (std::size_t v = 0; v < against.VertexCount(); ++v)
+  {
+    if (against.Positions[3 * v] < 0.25f)
+    {
+      against.Normals[3 * v] = float(std::sin(radians));
+      against.Normals[3 * v + 2] = float(std::cos(radians));
+    }
+  }
+  const double cos80 = std::cos(80 * 3.14159265358979323846 / 180);
+  // 800 triangles to 600: the upright half gives them up alone.
+  const SimplifyResult upright = Simplify(against, 1, OneRegion(), { 600 });
+  EXPECT_TRUE(upright.QuotasMet);
+  EXPECT_GT(LeastFacingOfNewFaces(against, Joined(upright)), cos80);
+  // To 300: fins too, but nothing against its normals.
+  const SimplifyResult fins = Simplify(against, 1, OneRegion(), { 300 });
+  EXPECT_TRUE(fins.QuotasMet);
+  const double finFacing = LeastFacingOfNewFaces(against, Joined(fins));
+  EXPECT_GT(finFacing, 0.0) << "a face against its normals where fins were left";
+  EXPECT_LT(finFacing, cos80);
+  // To 100: only with faces against their normals.
+  const SimplifyResult needed = Simplify(against, 1, OneRegion(), { 100 });
+  EXPECT_TRUE(needed.QuotasMet);
+  EXPECT_LE(TriangleTotal(needed), 100u);
+  EXPECT_LT(LeastFacingOfNewFaces(against, Joined(needed)), 0.0);
 }
 
 TEST(Simplifier, EmptyInput)
