@@ -363,7 +363,8 @@ TEST(Simplifier, NonManifoldAndMisorientedVerticesNeverMove)
   // The sheet: a wedge of triangles just above the grid, facing up, touching it only at (10, 10).
   const std::uint32_t pinch = at(10, 10);
   mustStay.insert(pinch);
-  const float* p = position(pinch);
+  // Copied: adding the rim's vertices may move the positions.
+  const std::array<float, 3> p = { position(pinch)[0], position(pinch)[1], position(pinch)[2] };
   std::vector<std::uint32_t> rim;
   for (int k = 0; k <= 6; ++k)
   {
