@@ -1291,13 +1291,8 @@ double DistanceToTriangle2(const double* p, const double* a, const double* b, co
 {
   const TrianglePoint nearest = ClosestOnTriangle(p, a, b, c);
   inside = nearest.Interior;
-  double ab[3], ac[3], e[3];
-  Sub(b, a, ab);
-  Sub(c, a, ac);
-  for (int i = 0; i < 3; ++i)
-  {
-    e[i] = p[i] - (a[i] + nearest.S * ab[i] + nearest.T * ac[i]);
-  }
+  double e[3];
+  Sub(p, nearest.Point, e);
   return Dot(e, e);
 }
 

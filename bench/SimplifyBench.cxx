@@ -263,10 +263,9 @@ public:
               if (Stamp[t] == Query)
                 continue;
               Stamp[t] = Query;
-              const Vec a = Corner(t, 0), b = Corner(t, 1), c = Corner(t, 2);
-              const TrianglePoint nearest = ClosestOnTriangle(
-                Coordinates(p).data(), Coordinates(a).data(), Coordinates(b).data(), Coordinates(c).data());
-              const Vec q = a + nearest.S * (b - a) + nearest.T * (c - a);
+              const TrianglePoint nearest = ClosestOnTriangle(Coordinates(p).data(),
+                Coordinates(Corner(t, 0)).data(), Coordinates(Corner(t, 1)).data(), Coordinates(Corner(t, 2)).data());
+              const Vec q{ nearest.Point[0], nearest.Point[1], nearest.Point[2] };
               if (Dot(q - p, q - p) < best)
               {
                 best = Dot(q - p, q - p);

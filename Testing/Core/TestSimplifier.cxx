@@ -1078,7 +1078,11 @@ TEST(ClosestPoint, NoSampleOfTheTriangleIsNearer)
     };
     double q[3];
     at(found.S, found.T, q);
-    const double foundDistance2 = distance2(q);
+    for (int i = 0; i < 3; ++i)
+    {
+      ASSERT_NEAR(found.Point[i], q[i], 1e-12) << "trial " << trial;
+    }
+    const double foundDistance2 = distance2(found.Point);
     const int n = 200;
     for (int i = 0; i <= n; ++i)
     {
