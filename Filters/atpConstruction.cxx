@@ -399,7 +399,12 @@ private:
     }
     ++Stats.Diamonds;
     Stats.Collapses += made.Collapses;
-    Stats.QuotaMisses += !made.QuotasMet;
+    Stats.QuotaMisses += made.TrianglesOverQuotas > 0;
+    Stats.TrianglesOverQuotas += made.TrianglesOverQuotas;
+    for (const MadePatch& patch : made.Patches)
+    {
+      Stats.PatchesOverBudget += patch.Mesh.TriangleCount() > Options.PatchBudget;
+    }
   }
 
   /// Writes the finished records of a level (`results` in file order) to the node scratch, each

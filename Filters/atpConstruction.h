@@ -35,8 +35,13 @@ struct ConstructionStats
   std::uint64_t Diamonds = 0;          ///< simplified diamonds
   std::uint64_t StoredTriangles = 0;   ///< over all levels
   std::uint64_t Collapses = 0;
-  /// Diamonds where locked geometry kept a member above its quota (kept, not fatal).
+  /// Diamonds where locked geometry kept a member above its quota (kept, not fatal: a quota
+  /// also halves what the children hold, well under the budget at coarse levels), and the
+  /// triangles above the quotas in all.
   std::uint64_t QuotaMisses = 0;
+  std::uint64_t TrianglesOverQuotas = 0;
+  /// Simplified patches above the patch budget: the renderer's unit of work grows past it.
+  std::uint64_t PatchesOverBudget = 0;
   std::uint64_t PatchBytes = 0;        ///< encoded patches
   std::uint64_t FileBytes = 0;
   std::uint64_t PeakScratchBytes = 0;  ///< intermediate patches and encoded patches on disk

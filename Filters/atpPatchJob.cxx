@@ -98,7 +98,7 @@ PatchJobResult SimplifyDiamond(const PatchJobContext& context, PatchJob& job)
   PatchJobResult result;
   result.Error = simplified.Error + job.ChildError + precision.PositionError(context.Grid);
   result.Collapses = simplified.Collapses;
-  result.QuotasMet = simplified.QuotasMet;
+  result.TrianglesOverQuotas = simplified.TrianglesOverQuotas;
   result.Patches.resize(job.Members.size());
   for (std::size_t i = 0; i < job.Members.size(); ++i)
   {

@@ -64,8 +64,8 @@ struct PatchJobResult
   std::vector<MadePatch> Patches;
   double Error = 0; ///< object-space error of the patches (0 for a leaf)
   std::uint64_t Collapses = 0;
-  /// False when locked geometry kept a member above the patch budget.
-  bool QuotasMet = true;
+  /// Triangles above the members' quotas (MemberQuotas), summed: see SimplifyResult.
+  std::uint64_t TrianglesOverQuotas = 0;
 };
 
 /// The most triangles each member of a diamond job keeps: the budget, and at most half of what

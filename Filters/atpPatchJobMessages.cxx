@@ -217,7 +217,7 @@ void EncodeResult(const PatchJobResult& result, std::vector<std::uint8_t>& out)
   }
   w.Put(result.Error);
   w.Put(result.Collapses);
-  w.Put(std::uint8_t(result.QuotasMet));
+  w.Put(result.TrianglesOverQuotas);
 }
 
 void DecodeResult(const std::uint8_t* data, std::size_t bytes, PatchJobResult& out)
@@ -233,7 +233,7 @@ void DecodeResult(const std::uint8_t* data, std::size_t bytes, PatchJobResult& o
   }
   out.Error = r.Get<double>();
   out.Collapses = r.Get<std::uint64_t>();
-  out.QuotasMet = r.Get<std::uint8_t>() != 0;
+  out.TrianglesOverQuotas = r.Get<std::uint64_t>();
   r.ExpectEnd();
 }
 

@@ -1269,7 +1269,7 @@ SimplifyResult Simplifier::Run()
   SimplifyResult result;
   result.Error = Deviation();
   result.Collapses = CollapseOrder.size();
-  result.QuotasMet = Excess == 0;
+  result.TrianglesOverQuotas = std::uint64_t(Excess);
   std::vector<std::vector<std::uint32_t>> byRegion(static_cast<std::size_t>(RegionCount));
   for (std::uint32_t t = 0; t < TriangleCount; ++t)
   {

@@ -48,8 +48,10 @@ struct SimplifyResult
   /// collapsed.
   double Error = 0;
   std::size_t Collapses = 0;
-  /// False when locked or topologically constrained geometry keeps a region over its quota.
-  bool QuotasMet = true;
+  /// Triangles above the quotas, summed over the regions that end over theirs: locked or
+  /// topologically constrained geometry can keep some.
+  std::uint64_t TrianglesOverQuotas = 0;
+  bool QuotasMet() const { return TrianglesOverQuotas == 0; }
 };
 
 /// Simplifies `mesh` by half-edge collapses until every region holds at most quotas[region]

@@ -1,6 +1,7 @@
 // vtkATPBuilder as a VTK user drives it: polydata or file input, properties, progress events,
 // errors reported (not thrown), PrintSelf.
 #include "atpConstruction.h"
+#include "atpModelFile.h"
 #include "atpPartitioner.h"
 #include "atpTriangleSource.h"
 #include "atpVolumeSlabs.h"
@@ -116,6 +117,40 @@ TEST(Builder, PartitionsPolyDataInputWithProgress)
   log.Values.clear();
   ASSERT_EQ(builder->Build(), 1);
   EXPECT_FALSE(log.Values.empty());
+}
+
+// The build's figures on quotas and the budget agree with the model it wrote: a budget too small
+// for what the members' locked borders hold leaves patches over it, the default none.
+TEST(Builder, CountsPatchesOverTheBudget)
+{
+  for (const int budget : { 16, 2000 })
+  {
+    const TemporaryPath model("budget.atp");
+    vtkNew<vtkATPBuilder> builder;
+    builder->SetInputData(WavySheet(60));
+    builder->SetFileName(model.c_str());
+    builder->SetLeafCapacity(400);
+    builder->SetPatchBudget(budget);
+    ASSERT_EQ(builder->Build(), 1) << builder->GetErrorMessage();
+    const atp::ModelFile file = atp::ModelFile::Open(model.Path);
+    std::uint64_t overBudget = 0, trianglesOverBudget = 0;
+    for (std::uint32_t i = 0; i < file.NodeCount(); ++i)
+    {
+      const atp::ModelNode& n = file.Node(i);
+      if (n.Children[0] >= 0 && n.TriangleCount > std::uint32_t(budget))
+      {
+        ++overBudget;
+        trianglesOverBudget += n.TriangleCount - std::uint32_t(budget);
+      }
+    }
+    const atp::ConstructionStats& c = builder->GetConstructionStats();
+    EXPECT_EQ(c.PatchesOverBudget, overBudget) << "budget " << budget;
+    EXPECT_EQ(overBudget > 0, budget == 16) << "budget " << budget;
+    // A member's quota is at most the budget: triangles over it are over the quota too.
+    EXPECT_GE(c.TrianglesOverQuotas, trianglesOverBudget) << "budget " << budget;
+    EXPECT_EQ(c.QuotaMisses == 0, c.TrianglesOverQuotas == 0) << "budget " << budget;
+    EXPECT_LE(c.QuotaMisses, c.Diamonds);
+  }
 }
 
 TEST(Builder, StreamsAFileToTheSameResult)

@@ -1,6 +1,7 @@
 // Construction's jobs on their own, as the MPI build ships them: a build whose every job and
 // result travels as bytes, made in reverse order, writes the same model as the threaded build;
 // malformed messages are refused, never read past.
+#include "atpConstruction.h"
 #include "atpPatchJob.h"
 #include "atpPatchJobMessages.h"
 #include "atpPatchJobRunner.h"
@@ -73,7 +74,7 @@ public:
   std::size_t LeafJobs = 0, DiamondJobs = 0;
 };
 
-int Build(const std::string& out, atp::PatchJobRunner* runner)
+int Build(const std::string& out, atp::PatchJobRunner* runner, atp::ConstructionStats& stats)
 {
   vtkNew<vtkATPBuilder> builder;
   builder->SetInputFileName(ATP_DATA_DIR "/bumpy-torus.ply");
@@ -82,7 +83,9 @@ int Build(const std::string& out, atp::PatchJobRunner* runner)
   builder->SetPatchBudget(500);
   builder->SetNumberOfThreads(2);
   builder->SetJobRunner(runner);
-  return builder->Build();
+  const int ok = builder->Build();
+  stats = builder->GetConstructionStats();
+  return ok;
 }
 
 /// Every way of cutting `message` short, or making it longer, is refused.
@@ -111,9 +114,15 @@ void ExpectOnlyTheWholeMessageDecodes(std::vector<std::uint8_t> message, const D
 TEST(PatchJob, ModelIsIdenticalWhenEveryJobTravelsAsBytes)
 {
   const std::string threads = TempPath("threads.atp"), shipped = TempPath("shipped.atp");
-  ASSERT_EQ(Build(threads, nullptr), 1);
+  atp::ConstructionStats direct, travelled;
+  ASSERT_EQ(Build(threads, nullptr, direct), 1);
   ByteTripRunner runner;
-  ASSERT_EQ(Build(shipped, &runner), 1);
+  ASSERT_EQ(Build(shipped, &runner, travelled), 1);
+  // The figures each result carries besides its patches travel too.
+  EXPECT_EQ(travelled.Collapses, direct.Collapses);
+  EXPECT_GT(direct.TrianglesOverQuotas, 0u);
+  EXPECT_EQ(travelled.TrianglesOverQuotas, direct.TrianglesOverQuotas);
+  EXPECT_EQ(travelled.QuotaMisses, direct.QuotaMisses);
   EXPECT_GT(runner.LeafJobs, 100u);
   EXPECT_GT(runner.DiamondJobs, 50u);
   const std::string reference = ReadBytes(threads);
