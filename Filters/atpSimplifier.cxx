@@ -32,6 +32,18 @@ constexpr double FinCosine = 0.17;
 /// At most 3 normal components and 4 color channels.
 constexpr int MaxAttributes = 7;
 
+/// How a moved face must face its corners' input normals, strictest first.
+enum class FacingGuard : std::uint8_t
+{
+  NoFins, ///< within about 80 degrees of each (FinCosine)
+  Fins,   ///< within 90 degrees: a fin standing off the surface is allowed
+  /// Not held to them: at the coarse levels the input normals of the few vertices kept no
+  /// longer describe the surface (on the brain they stopped all but 23 of the coarsest
+  /// diamond's 15,690 collapses needed), and a patch over its budget is the worse evil: it
+  /// costs every frame that draws it.
+  Off
+};
+
 enum class VertexKind : std::uint8_t
 {
   Free,     ///< interior manifold vertex: may collapse onto any neighbor
@@ -297,15 +309,9 @@ private:
   /// are taken only when the over-quota regions have nothing else left (Relaxed).
   std::vector<std::uint32_t> Deferred;
   bool Relaxed = false;
-  /// The least cosine between a moved face and its corners' input normals: FinCosine, then 0
-  /// once the regions over quota have nothing else left.
-  double MinFacing = FinCosine;
-  /// Whether moved faces are held to their corners' input normals at all: given up last, when
-  /// the regions over quota have nothing else left even with fins. At the coarse levels the
-  /// input normals of the few vertices kept no longer describe the surface (on the brain they
-  /// stopped all but 23 of the coarsest diamond's 15,690 collapses needed), and a patch over
-  /// its budget is the worse evil: it costs every frame that draws it.
-  bool FacingChecked = true;
+  /// How a moved face is held to its corners' input normals, relaxed a stage each time the
+  /// regions over quota have nothing else left.
+  FacingGuard Facing = FacingGuard::NoFins;
 
   // Scratch, reused by every collapse: stamps make clearing unnecessary.
   FanView Fan;
@@ -712,6 +718,7 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
   int opposites = 0;
   const double* pu = Position(u);
   const double* pv = Position(v);
+  const double minFacing2 = Facing == FacingGuard::NoFins ? FinCosine * FinCosine : 0;
   for (std::uint32_t c : Fan)
   {
     const std::uint32_t t = TriangleOf(c);
@@ -743,13 +750,13 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
     }
     // Small turns, each allowed, add up to folds: the face must also agree with the input
     // normals of its corners (which it keeps for shading).
-    if (HasNormals && FacingChecked)
+    if (HasNormals && Facing != FacingGuard::Off)
     {
       for (std::uint32_t z : { v, x, y })
       {
         const float* nz = &Mesh.Normals[3 * std::size_t(z)];
         const double facing = after[0] * nz[0] + after[1] * nz[1] + after[2] * nz[2];
-        if (facing <= 0 || facing * facing <= MinFacing * MinFacing * area2)
+        if (facing <= 0 || facing * facing <= minFacing2 * area2)
         {
           return false;
         }
@@ -1175,21 +1182,14 @@ SimplifyResult Simplifier::Run()
         }
         continue;
       }
-      if (!FacingChecked) // the guards are off already: nothing legal is left at all
+      if (Facing == FacingGuard::Off) // the guards are off already: nothing legal is left at all
       {
         break;
       }
       // Still over quota with no legal collapse left: a fin, and then a face against its
       // corners' normals, are lesser evils than a patch over its budget. Every vertex is priced
       // again with the guard relaxed.
-      if (MinFacing > 0)
-      {
-        MinFacing = 0;
-      }
-      else
-      {
-        FacingChecked = false;
-      }
+      Facing = FacingGuard(int(Facing) + 1);
       for (std::uint32_t v = 0; v < VertexCount; ++v)
       {
         Evaluate(v, false);
