@@ -35,8 +35,8 @@ struct ConstructionStats
   std::uint64_t Diamonds = 0;          ///< simplified diamonds
   std::uint64_t StoredTriangles = 0;   ///< over all levels
   std::uint64_t Collapses = 0;
-  /// Diamonds where locked geometry kept a member above its quota (kept, not fatal: a quota
-  /// also halves what the children hold, well under the budget at coarse levels), and the
+  /// Diamonds where locked geometry kept a member above its quota (kept, not fatal: a quota is
+  /// also at most half of what the children hold, often well under the budget), and the
   /// triangles above the quotas in all.
   std::uint64_t QuotaMisses = 0;
   std::uint64_t TrianglesOverQuotas = 0;

@@ -9,10 +9,15 @@ namespace atp
 namespace
 {
 
-/// Changes whenever a shipped type changes size: mismatched builds refuse each other.
+/// The fields the messages carry, in order: one more whenever a message gains, loses or
+/// widens one (2: a result carries the triangles over its quotas, not a flag).
+constexpr std::uint64_t MessageFields = 2;
+
+/// Changes whenever a shipped type changes size or a message its fields: mismatched builds
+/// refuse each other when the context arrives, not with a short read in the middle of a job.
 constexpr std::uint64_t LayoutSignature = (std::uint64_t(0x4154504a) << 32) // "ATPJ"
-  ^ (sizeof(SoupTriangle) << 24) ^ (sizeof(Tetra) << 16) ^ (sizeof(Sphere) << 8) ^
-  sizeof(NormalCone);
+  ^ (MessageFields << 40) ^ (sizeof(SoupTriangle) << 24) ^ (sizeof(Tetra) << 16) ^
+  (sizeof(Sphere) << 8) ^ sizeof(NormalCone);
 
 class ByteWriter
 {
