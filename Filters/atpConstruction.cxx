@@ -375,6 +375,7 @@ private:
     {
       const NodeIndex m = members[i];
       Store(m, made.Patches[i], haveParents);
+      Stats.SimplifiedPatchesOverBudget += made.Patches[i].Mesh.TriangleCount() > Options.PatchBudget;
       spheres.push_back(LoadSphere(Result(m).Sphere));
       std::vector<NormalCone> cones{ made.Patches[i].Cone };
       for (NodeIndex c : Forest[m].Children())
@@ -401,10 +402,6 @@ private:
     Stats.Collapses += made.Collapses;
     Stats.QuotaMisses += made.TrianglesOverQuotas > 0;
     Stats.TrianglesOverQuotas += made.TrianglesOverQuotas;
-    for (const MadePatch& patch : made.Patches)
-    {
-      Stats.PatchesOverBudget += patch.Mesh.TriangleCount() > Options.PatchBudget;
-    }
   }
 
   /// Writes the finished records of a level (`results` in file order) to the node scratch, each

@@ -35,13 +35,14 @@ struct ConstructionStats
   std::uint64_t Diamonds = 0;          ///< simplified diamonds
   std::uint64_t StoredTriangles = 0;   ///< over all levels
   std::uint64_t Collapses = 0;
-  /// Diamonds where locked geometry kept a member above its quota (kept, not fatal: a quota is
-  /// also at most half of what the children hold, often well under the budget), and the
-  /// triangles above the quotas in all.
+  /// Diamonds where locked or topologically constrained geometry kept a member above its quota
+  /// (kept, not fatal: a quota is also at most half of what the children hold, often well under
+  /// the budget).
   std::uint64_t QuotaMisses = 0;
-  std::uint64_t TrianglesOverQuotas = 0;
-  /// Simplified patches above the patch budget: the renderer's unit of work grows past it.
-  std::uint64_t PatchesOverBudget = 0;
+  std::uint64_t TrianglesOverQuotas = 0; ///< above the members' quotas, summed
+  /// Simplified patches above the patch budget, the renderer's unit of work (leaves hold up to
+  /// the leaf capacity instead).
+  std::uint64_t SimplifiedPatchesOverBudget = 0;
   std::uint64_t PatchBytes = 0;        ///< encoded patches
   std::uint64_t FileBytes = 0;
   std::uint64_t PeakScratchBytes = 0;  ///< intermediate patches and encoded patches on disk

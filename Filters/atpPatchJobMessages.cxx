@@ -9,15 +9,19 @@ namespace atp
 namespace
 {
 
-/// The fields the messages carry, in order: one more whenever a message gains, loses or
-/// widens one (2: a result carries the triangles over its quotas, not a flag).
-constexpr std::uint64_t MessageFields = 2;
+/// The messages' version: one more whenever a message gains, loses or widens a field (the
+/// sizes of the shipped types count themselves). 1: the first; 2: a result carries the
+/// triangles over its quotas instead of a flag. TestPatchJob pins a result message's size.
+constexpr std::uint64_t MessageVersion = 2;
 
-/// Changes whenever a shipped type changes size or a message its fields: mismatched builds
-/// refuse each other when the context arrives, not with a short read in the middle of a job.
-constexpr std::uint64_t LayoutSignature = (std::uint64_t(0x4154504a) << 32) // "ATPJ"
-  ^ (MessageFields << 40) ^ (sizeof(SoupTriangle) << 24) ^ (sizeof(Tetra) << 16) ^
-  (sizeof(Sphere) << 8) ^ sizeof(NormalCone);
+static_assert(MessageVersion < 256 && sizeof(SoupTriangle) < 256 && sizeof(Tetra) < 256 &&
+    sizeof(Sphere) < 256 && sizeof(NormalCone) < 256,
+  "each part of the layout signature has one byte");
+
+/// Mismatched builds refuse each other when the context arrives, not with a short read in the
+/// middle of a job: "ATP", the version, then the sizes of the shipped types, a byte each.
+constexpr std::uint64_t LayoutSignature = (std::uint64_t(0x415450) << 40) | (MessageVersion << 32) |
+  (sizeof(SoupTriangle) << 24) | (sizeof(Tetra) << 16) | (sizeof(Sphere) << 8) | sizeof(NormalCone);
 
 class ByteWriter
 {

@@ -32,7 +32,8 @@ constexpr double FinCosine = 0.17;
 /// At most 3 normal components and 4 color channels.
 constexpr int MaxAttributes = 7;
 
-/// How a moved face must face its corners' input normals, strictest first.
+/// How a moved face must face its corners' input normals, strictest first (Run relaxes the
+/// guard one stage at a time, up to Off, the last).
 enum class FacingGuard : std::uint8_t
 {
   NoFins, ///< within about 80 degrees of each (FinCosine)

@@ -497,6 +497,15 @@ TEST(Simplifier, UnreachableQuotaWhenEverythingIsLocked)
   EXPECT_EQ(result.Collapses, 0u);
   EXPECT_EQ(TriangleTotal(result), mesh.TriangleCount());
   EXPECT_EQ(result.Error, 0.0);
+
+  // Split in two at x = 20: the 40 triangles left of it over a quota of 10, the 60 right of it
+  // under one of 1000. What is over counts whole: the room on the right does not offset it.
+  const RegionFunction halves = [](const double p[3], int) { return p[0] < 20 ? 0 : 1; };
+  const SimplifyResult split = Simplify(mesh, 2, halves, { 10, 1000 });
+  ASSERT_EQ(split.Regions.size(), 2u);
+  EXPECT_EQ(split.Regions[0].TriangleCount(), 40u);
+  EXPECT_EQ(split.Regions[1].TriangleCount(), 60u);
+  EXPECT_EQ(split.TrianglesOverQuotas, 40u - 10u);
 }
 
 /// A flat disk of `rings` rings of `spokes` vertices around a center (vertex 0), its rim
