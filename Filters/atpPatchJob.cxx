@@ -86,12 +86,15 @@ PatchJobResult SimplifyDiamond(const PatchJobContext& context, PatchJob& job)
   {
     parts.push_back(&c);
   }
-  const std::vector<std::uint32_t> quotas = MemberQuotas(job, context.PatchBudget);
+  const DiamondQuotas quotas = QuotasOf(job, context.PatchBudget);
+  SimplifyOptions options;
+  options.TotalQuota = quotas.Total;
   const PatchMesh merged = MergePatches(parts);
   job.Children.clear(); // one copy of the diamond in memory while it simplifies
   const MemberLocator locator(job.Members, context.Frame);
   SimplifyResult simplified = Simplify(merged, int(job.Members.size()),
-    [&locator](const double p[3], int likely) { return locator.MemberOf(p, likely); }, quotas);
+    [&locator](const double p[3], int likely) { return locator.MemberOf(p, likely); }, quotas.Members,
+    options);
   // The merged input was already off the original by up to its children's error; storing
   // the interior on a coarser grid adds its rounding.
   const PatchPrecision precision = PrecisionFor(context.Grid, simplified.Error + job.ChildError);
@@ -113,18 +116,19 @@ PatchJobResult SimplifyDiamond(const PatchJobContext& context, PatchJob& job)
 // Every level halves the triangles, as one bisection halves the volume, also where the leaves
 // are far below the budget: a level that kept 3/4 of its children's triangles would cost nearly
 // a copy of the finer level in the file and be drawn almost never.
-std::vector<std::uint32_t> MemberQuotas(const PatchJob& job, std::uint32_t budget)
+DiamondQuotas QuotasOf(const PatchJob& job, std::uint32_t budget)
 {
   const std::size_t childrenPerMember = job.Children.size() / job.Members.size();
-  std::vector<std::uint32_t> quotas(job.Members.size());
-  for (std::size_t m = 0; m < quotas.size(); ++m)
+  DiamondQuotas quotas;
+  quotas.Members.assign(job.Members.size(), budget);
+  for (std::size_t m = 0; m < job.Members.size(); ++m)
   {
     std::size_t children = 0;
     for (std::size_t c = 0; c < childrenPerMember; ++c)
     {
       children += job.Children[childrenPerMember * m + c].TriangleCount();
     }
-    quotas[m] = std::uint32_t(std::min<std::size_t>(budget, (children + 1) / 2));
+    quotas.Total += std::min<std::size_t>(budget, (children + 1) / 2);
   }
   return quotas;
 }

@@ -64,14 +64,22 @@ struct PatchJobResult
   std::vector<MadePatch> Patches;
   double Error = 0; ///< object-space error of the patches (0 for a leaf)
   std::uint64_t Collapses = 0;
-  /// Triangles above the members' quotas (MemberQuotas), summed: see SimplifyResult.
+  /// Triangles above the diamond's quotas (QuotasOf): see SimplifyResult.
   std::uint64_t TrianglesOverQuotas = 0;
 };
 
-/// The most triangles each member of a diamond job keeps: the budget, and at most half of what
-/// its two children hold. (atp-bench-simplify gives the simplifiers a build's diamonds with
-/// these.)
-VTKATPFILTERS_EXPORT std::vector<std::uint32_t> MemberQuotas(const PatchJob& job, std::uint32_t budget);
+/// What a diamond job's simplification keeps: each member at most the budget, and the members
+/// together at most half of what their children hold, each member's half capped at the budget,
+/// so that each level halves as each bisection halves the volume. The members share the
+/// halving: a smooth member may give up more than half where a rough one keeps more, as one
+/// simplification of the whole diamond would. (atp-bench-simplify gives the simplifiers a
+/// build's diamonds with these.)
+struct DiamondQuotas
+{
+  std::vector<std::uint32_t> Members; ///< the budget, per member
+  std::uint64_t Total = 0;
+};
+VTKATPFILTERS_EXPORT DiamondQuotas QuotasOf(const PatchJob& job, std::uint32_t budget);
 
 /// Runs one job, freeing its inputs as soon as they are merged. Throws std::exception on
 /// failure (e.g. an inconsistent mesh).

@@ -234,11 +234,12 @@ private:
   }
   void FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, std::uint32_t w);
   int RegionOf(const double point[3], int likely) const;
-  bool OverQuota(int r) const { return Over[std::size_t(r)] != 0; }
+  bool OverQuota(int r) const { return Total > TotalQuota || Over[std::size_t(r)] != 0; }
   /// Adds delta to region r's live triangle count, keeping its Over flag current.
   void CountTriangles(int r, std::int64_t delta)
   {
     const std::size_t i = std::size_t(r);
+    Total += delta;
     Counts[i] += delta;
     const bool over = Counts[i] > std::int64_t(Quotas[i]);
     RegionsOver += std::size_t(over) - std::size_t(Over[i]);
@@ -305,6 +306,8 @@ private:
   std::vector<std::int64_t> Counts;           // live triangles per region
   std::vector<std::uint8_t> Over;             // per region: Counts over its quota
   std::size_t RegionsOver = 0;                // regions over their quotas
+  std::int64_t Total = 0;                     // live triangles in all
+  const std::int64_t TotalQuota;
   std::int64_t Excess = 0;                    // sum over regions of max(0, count - quota)
   /// Collapses that would also remove triangles of regions within their quotas wait here, and
   /// are taken only when the over-quota regions have nothing else left (Relaxed).
@@ -345,6 +348,7 @@ Simplifier::Simplifier(const PatchMesh& mesh, int regionCount, const RegionFunct
   , VertexCount(mesh.VertexCount())
   , TriangleCount(mesh.TriangleCount())
   , Waiting(CheckedRegionCount(regionCount, quotas), VertexCount)
+  , TotalQuota(std::int64_t(std::min<std::uint64_t>(options.TotalQuota, INT64_MAX)))
 {
   if (TriangleCount >= MaxTriangles)
   {
@@ -508,6 +512,7 @@ void Simplifier::AssignRegions()
   {
     Excess += std::max<std::int64_t>(0, Counts[std::size_t(r)] - std::int64_t(Quotas[std::size_t(r)]));
   }
+  Excess += std::max<std::int64_t>(0, Total - TotalQuota);
 }
 
 void Simplifier::GatherFan(std::uint32_t u)
@@ -850,7 +855,7 @@ void Simplifier::ForEachCollapse(std::uint32_t u, Consider consider)
     // regions, not all over their quotas: otherwise every collapse ranks first and waits in
     // the first triangle's region (Ranked), whatever the second's.
     ++StampU;
-    const bool ranksDiffer = RegionCount > 1 && RegionsOver < std::size_t(RegionCount);
+    const bool ranksDiffer = RegionCount > 1 && Total <= TotalQuota && RegionsOver < std::size_t(RegionCount);
     for (std::size_t i = 0; ranksDiffer && i < Fan.size(); ++i)
     {
       const std::uint32_t t = TriangleOf(Fan[i]);
@@ -990,12 +995,14 @@ std::int64_t Simplifier::ExcessChange(std::uint32_t u, std::uint32_t v)
 {
   Touched.clear();
   MovedRegions.clear();
+  std::int64_t totalDelta = 0;
   auto change = [&](int r, std::int64_t d) {
     if (Delta[std::size_t(r)] == 0 && std::find(Touched.begin(), Touched.end(), r) == Touched.end())
     {
       Touched.push_back(r);
     }
     Delta[std::size_t(r)] += d;
+    totalDelta += d;
   };
   const float* pv = &Mesh.Positions[3 * std::size_t(v)];
   for (std::uint32_t c : Fan)
@@ -1031,7 +1038,8 @@ std::int64_t Simplifier::ExcessChange(std::uint32_t u, std::uint32_t v)
       change(r, +1);
     }
   }
-  std::int64_t result = 0;
+  std::int64_t result = std::max<std::int64_t>(0, Total + totalDelta - TotalQuota) -
+    std::max<std::int64_t>(0, Total - TotalQuota);
   for (int r : Touched)
   {
     const std::int64_t count = Counts[std::size_t(r)];

@@ -33,6 +33,9 @@ struct SimplifyOptions
   double NormalWeight = 0.002;
   /// The same for colors, each channel scaled to [0, 1].
   double ColorWeight = 0.005;
+  /// At most this many triangles in all, besides each region's own quota: the regions then
+  /// share what they give up, each only held to its quota.
+  std::uint64_t TotalQuota = UINT64_MAX;
 };
 
 struct SimplifyResult
@@ -48,14 +51,15 @@ struct SimplifyResult
   /// collapsed.
   double Error = 0;
   std::size_t Collapses = 0;
-  /// Triangles above the quotas, summed over the regions that end over theirs: locked or
-  /// topologically constrained geometry can keep some.
+  /// Triangles above the quotas, summed over the regions that end over theirs, plus those
+  /// above the total quota: locked or topologically constrained geometry can keep some.
   std::uint64_t TrianglesOverQuotas = 0;
   bool QuotasMet() const { return TrianglesOverQuotas == 0; }
 };
 
 /// Simplifies `mesh` by half-edge collapses until every region holds at most quotas[region]
-/// triangles (a triangle belongs to regionOf(its centroid)). Every output vertex is an input
+/// triangles (a triangle belongs to regionOf(its centroid)) and all of them at most
+/// options.TotalQuota. Every output vertex is an input
 /// vertex with its exact position, normal and color. Vertices on diamond-external boundary edges
 /// (open edges whose BoundaryEdges bit is clear), on non-manifold edges or with a non-manifold
 /// fan never move; a vertex on the original boundary (bit set) only collapses along it. No

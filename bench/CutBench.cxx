@@ -62,7 +62,7 @@ int main(int argc, char** argv)
     std::mt19937_64 random(1);
     std::uniform_real_distribution<double> unit(-1, 1), distance(1.2, 4);
     std::vector<double> seconds;
-    std::vector<std::size_t> visited, drawn;
+    std::vector<std::size_t> visited, drawn, triangles;
     atp::CutResult cut;
     for (int v = 0; v < views; ++v)
     {
@@ -97,16 +97,24 @@ int main(int argc, char** argv)
       seconds.push_back(Since(start));
       visited.push_back(cut.Visited);
       drawn.push_back(cut.Drawn.size());
+      std::size_t drawnTriangles = 0;
+      for (const std::uint32_t node : cut.Drawn)
+      {
+        drawnTriangles += model.Node(node).TriangleCount;
+      }
+      triangles.push_back(drawnTriangles);
     }
     std::sort(seconds.begin(), seconds.end());
     std::sort(visited.begin(), visited.end());
     std::sort(drawn.begin(), drawn.end());
+    std::sort(triangles.begin(), triangles.end());
     std::printf("model: %s: %zu nodes, %zu diamonds; open %.1f ms, diamond index %.1f ms\n", argv[1],
       model.NodeCount(), index->DiamondCount(), 1e3 * openSeconds, 1e3 * indexSeconds);
     std::printf("cut: %d views at %g px: median %.3f ms, p95 %.3f ms; nodes visited median %zu; "
-                "patches median %zu, max %zu\n",
+                "patches median %zu, max %zu; triangles median %zu, max %zu\n",
       views, tolerance, 1e3 * seconds[seconds.size() / 2], 1e3 * seconds[seconds.size() * 95 / 100],
-      visited[visited.size() / 2], drawn[drawn.size() / 2], drawn.back());
+      visited[visited.size() / 2], drawn[drawn.size() / 2], drawn.back(), triangles[triangles.size() / 2],
+      triangles.back());
   }
   catch (const std::exception& e)
   {

@@ -11,7 +11,8 @@
 //   holes inside it are the original boundary. Ours halves it as one region.
 // - the diamonds of a build of MESH, up to N of each level (--diamonds=N): each exactly what the
 //   build hands our simplifier (its children's patches merged, one region per member, the
-//   build's quotas); meshoptimizer, which has no regions, gets the sum of the quotas.
+//   build's quotas: the budget per member, half of the children in all); meshoptimizer, which
+//   has no regions, gets the total.
 // --speed-only skips the error measures (for profiling the simplifiers: they take most of the
 // run otherwise); --normal-weight=W sets SimplifyOptions::NormalWeight of the first variant
 // (default: the library's).
@@ -456,6 +457,7 @@ struct Case
   int Regions = 1;
   RegionFunction RegionOf = [](const double*, int) { return 0; };
   std::vector<std::uint32_t> Quotas;
+  std::uint64_t TotalQuota = UINT64_MAX; ///< at most this many in all (SimplifyOptions)
 };
 
 /// Chunks of `mesh`, each of about `target` triangles around a vertex, to be halved.
@@ -565,17 +567,15 @@ std::vector<Case> Diamonds(const std::string& path, std::size_t perLevel)
     diamond.Regions = int(job.Members.size());
     const auto locator = std::make_shared<MemberLocator>(job.Members, runner.Context->Frame);
     diamond.RegionOf = [locator](const double p[3], int likely) { return locator->MemberOf(p, likely); };
-    diamond.Quotas = MemberQuotas(job, runner.Context->PatchBudget);
+    const DiamondQuotas quotas = QuotasOf(job, runner.Context->PatchBudget);
+    diamond.Quotas = quotas.Members;
+    diamond.TotalQuota = quotas.Total;
     const auto open = CountOpenEdges(diamond.Mesh);
-    std::string quotas;
-    for (const std::uint32_t q : diamond.Quotas)
-    {
-      quotas += (quotas.empty() ? "" : " ") + std::to_string(q);
-    }
     diamond.Title = "diamond, level " + std::to_string(runner.Levels[j]) + " up: " +
       std::to_string(diamond.Mesh.TriangleCount()) + " triangles, " + std::to_string(open.second) +
       " locked edges, " + std::to_string(open.first) + " hole edges, " + std::to_string(diamond.Regions) +
-      " members -> quotas " + quotas;
+      " members -> " + std::to_string(quotas.Total) + " in all, at most " +
+      std::to_string(quotas.Members.front()) + " each";
     cases.push_back(std::move(diamond));
   }
   return cases;
@@ -640,15 +640,15 @@ int main(int argc, char** argv)
     return 1;
   }
   std::printf("meshopt_simplify (meshoptimizer %d.%d) runs with meshopt_SimplifyLockBorder and target_error 1,\n"
-              "to the sum of the quotas (it has no regions). LockBorder also locks the input's own holes,\n"
+              "to the total quota (it has no regions). LockBorder also locks the input's own holes,\n"
               "which our simplifier may simplify along.\n"
               "Hausdorff: symmetric, sampled, relative to the input's box diagonal. Normal: the mean\n"
               "angle (degrees) between each input vertex's normal and the output's interpolated\n"
               "normal at its nearest point. Ours weighs normals by %g.\n\n",
     MESHOPTIMIZER_VERSION / 1000, MESHOPTIMIZER_VERSION % 1000 / 10, normalWeight);
 
-  // With several regions, ours also runs as meshoptimizer does, to the sum of the quotas in
-  // one region: what the per-member quotas cost apart from the simplifier itself.
+  // With several regions, ours also runs as meshoptimizer does, to the total in one region:
+  // what the members' budgets and regions cost apart from the simplifier itself.
   const bool regions = std::any_of(cases.begin(), cases.end(), [](const Case& c) { return c.Regions > 1; });
   const int variants = regions ? 4 : 3;
   Row sum[4];
@@ -657,15 +657,16 @@ int main(int argc, char** argv)
   // follows a few inputs' worst points, so the comparison is also made input by input.
   std::vector<double> errorRatios[4];
   const char* names[4] = { "ours (normals weighted)", "ours (positions only)", "meshopt LockBorder",
-    "ours, quotas summed" };
+    "ours, one region" };
   for (const Case& input : cases)
   {
     const PatchMesh& mesh = input.Mesh;
-    std::uint32_t total = 0;
+    std::uint64_t quotaSum = 0;
     for (const std::uint32_t q : input.Quotas)
     {
-      total += q;
+      quotaSum += q;
     }
+    const std::uint32_t total = std::uint32_t(std::min(quotaSum, input.TotalQuota));
     const double diagonal = Diagonal(mesh);
     // Relative to the input's diagonal; 0 (not sampled) with --speed-only.
     const auto measure = [&](const std::vector<std::uint32_t>& out, Row& row) {
@@ -688,6 +689,7 @@ int main(int argc, char** argv)
       }
       SimplifyOptions options;
       options.NormalWeight = variant == 1 ? 0 : normalWeight;
+      options.TotalQuota = input.TotalQuota;
       SimplifyResult result;
       rows[variant].Seconds = Time([&] {
         result = variant == 3

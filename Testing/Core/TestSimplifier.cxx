@@ -477,6 +477,35 @@ TEST(Simplifier, QuotasPerRegion)
   }
 }
 
+// With a total quota the regions share the halving: a flat region gives up more than half, a
+// bumpy one keeps more, and the surface is closer to the input than with half each. Each region
+// is still held to its own quota.
+TEST(Simplifier, RegionsShareATotalQuota)
+{
+  const PatchMesh mesh = Grid(60, [](double x, double y) { return x < 0.5 ? 0.0 : Bumps(x, y); }, true);
+  const RegionFunction side = [](const double p[3], int) { return p[0] < 0.5 ? 0 : 1; };
+  const std::uint32_t half = std::uint32_t(mesh.TriangleCount() / 2);
+
+  const SimplifyResult apart = Simplify(mesh, 2, side, { half / 2, half / 2 });
+  ASSERT_TRUE(apart.QuotasMet());
+
+  SimplifyOptions pooled;
+  pooled.TotalQuota = half;
+  const SimplifyResult shared = Simplify(mesh, 2, side, { half, half }, pooled);
+  EXPECT_TRUE(shared.QuotasMet());
+  EXPECT_LE(TriangleTotal(shared), half);
+  EXPECT_GE(TriangleTotal(shared) + 4, half);
+  EXPECT_LT(shared.Regions[0].TriangleCount(), half / 4) << "the flat region gives up most";
+  EXPECT_GT(shared.Regions[1].TriangleCount(), half * 3 / 4);
+  EXPECT_LT(shared.Error, 0.8 * apart.Error);
+
+  // The bumpy region's own quota still holds: the flat one gives up the rest.
+  const SimplifyResult capped = Simplify(mesh, 2, side, { half, half / 2 }, pooled);
+  EXPECT_TRUE(capped.QuotasMet());
+  EXPECT_LE(capped.Regions[1].TriangleCount(), half / 2);
+  EXPECT_LE(TriangleTotal(capped), half);
+}
+
 TEST(Simplifier, UnreachableQuotaWhenEverythingIsLocked)
 {
   // A strip one triangle pair wide: every vertex is on the external boundary.
@@ -506,6 +535,11 @@ TEST(Simplifier, UnreachableQuotaWhenEverythingIsLocked)
   EXPECT_EQ(split.Regions[0].TriangleCount(), 40u);
   EXPECT_EQ(split.Regions[1].TriangleCount(), 60u);
   EXPECT_EQ(split.TrianglesOverQuotas, 40u - 10u);
+
+  // Over a total quota as well: both excesses count.
+  SimplifyOptions pooled;
+  pooled.TotalQuota = 70;
+  EXPECT_EQ(Simplify(mesh, 2, halves, { 10, 1000 }, pooled).TrianglesOverQuotas, (40u - 10u) + (100u - 70u));
 }
 
 /// A flat disk of `rings` rings of `spokes` vertices around a center (vertex 0), its rim
