@@ -365,9 +365,9 @@ TEST_F(Construction, QuotasAreMetAndLevelsCoarsen)
     }
   }
   EXPECT_EQ(leafTriangles, h.InputTriangles);
-  // A member keeps at most half of its children's triangles (the leaves here hold far less
-  // than the budget, so the budget alone would keep most of them), but for the few members
-  // whose locked borders keep them above it.
+  // A diamond's members keep at most half of their children's triangles in all (the leaves
+  // here hold far less than the budget, so the budget alone would keep most of them): a member
+  // may keep more than half where a sibling gives up more, not the level.
   std::uint64_t inner = 0, innerChildren = 0, aboveHalf = 0;
   for (std::uint32_t i = 0; i < model.NodeCount(); ++i)
   {
