@@ -307,8 +307,9 @@ private:
   std::vector<std::uint8_t> Over;             // per region: Counts over its quota
   std::size_t RegionsOver = 0;                // regions over their quotas
   std::int64_t Total = 0;                     // live triangles in all
-  const std::int64_t TotalQuota;
-  std::int64_t Excess = 0;                    // sum over regions of max(0, count - quota)
+  const std::int64_t TotalQuota;              // while Total is over it, every region is over
+  /// Sum over regions of max(0, count - quota), plus max(0, Total - TotalQuota).
+  std::int64_t Excess = 0;
   /// Collapses that would also remove triangles of regions within their quotas wait here, and
   /// are taken only when the over-quota regions have nothing else left (Relaxed).
   std::vector<std::uint32_t> Deferred;

@@ -59,10 +59,10 @@ struct SimplifyResult
 
 /// Simplifies `mesh` by half-edge collapses until every region holds at most quotas[region]
 /// triangles (a triangle belongs to regionOf(its centroid)) and all of them at most
-/// options.TotalQuota. Every output vertex is an input
-/// vertex with its exact position, normal and color. Vertices on diamond-external boundary edges
-/// (open edges whose BoundaryEdges bit is clear), on non-manifold edges or with a non-manifold
-/// fan never move; a vertex on the original boundary (bit set) only collapses along it. No
+/// options.TotalQuota. Every output vertex is an input vertex with its exact position, normal
+/// and color. Vertices on diamond-external boundary edges (open edges whose BoundaryEdges bit is
+/// clear), on non-manifold edges or with a non-manifold fan never move; a vertex on the original
+/// boundary (bit set) only collapses along it. No
 /// collapse flips or degenerates a triangle or breaks manifoldness (link condition). None turns
 /// a face more than about 80 degrees from the input normal of any of its corners unless a
 /// region cannot meet its quota otherwise, nor against it unless a region cannot meet its quota
