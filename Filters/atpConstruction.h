@@ -35,11 +35,11 @@ struct ConstructionStats
   std::uint64_t Diamonds = 0;          ///< simplified diamonds
   std::uint64_t StoredTriangles = 0;   ///< over all levels
   std::uint64_t Collapses = 0;
-  /// Diamonds where locked or topologically constrained geometry kept a member above its quota
-  /// (kept, not fatal: a quota is also at most half of what the children hold, often well under
-  /// the budget).
+  /// Diamonds where locked or topologically constrained geometry kept the members above their
+  /// quotas (QuotasOf: half of what their children hold in all, often well under the budget;
+  /// kept, not fatal).
   std::uint64_t QuotaMisses = 0;
-  std::uint64_t TrianglesOverQuotas = 0; ///< above the members' quotas, summed
+  std::uint64_t TrianglesOverQuotas = 0; ///< above the diamonds' quotas, summed
   /// Simplified patches above the patch budget, the renderer's unit of work (leaves hold up to
   /// the leaf capacity instead).
   std::uint64_t SimplifiedPatchesOverBudget = 0;

@@ -78,7 +78,7 @@ PatchJobResult MakeLeafPatch(const PatchJobContext& context, const PatchJob& job
 }
 
 /// Merges the children's patches and simplifies them with the diamond's external boundary
-/// locked and one quota per member.
+/// locked, one region per member, to the diamond's quotas (QuotasOf).
 PatchJobResult SimplifyDiamond(const PatchJobContext& context, PatchJob& job)
 {
   std::vector<const PatchMesh*> parts;

@@ -62,12 +62,11 @@ struct SimplifyResult
 /// options.TotalQuota. Every output vertex is an input vertex with its exact position, normal
 /// and color. Vertices on diamond-external boundary edges (open edges whose BoundaryEdges bit is
 /// clear), on non-manifold edges or with a non-manifold fan never move; a vertex on the original
-/// boundary (bit set) only collapses along it. No
-/// collapse flips or degenerates a triangle or breaks manifoldness (link condition). None turns
-/// a face more than about 80 degrees from the input normal of any of its corners unless a
-/// region cannot meet its quota otherwise, nor against it unless a region cannot meet its quota
-/// even then (at coarse levels, the input normals of the few vertices kept no longer describe
-/// the surface).
+/// boundary (bit set) only collapses along it. No collapse flips or degenerates a triangle or
+/// breaks manifoldness (link condition). None turns a face more than about 80 degrees from the
+/// input normal of any of its corners unless a region cannot meet its quota otherwise, nor
+/// against it unless a region cannot meet its quota even then (at coarse levels, the input
+/// normals of the few vertices kept no longer describe the surface).
 /// Deterministic and reentrant: concurrent calls on different meshes are safe. regionOf is
 /// not called when regionCount is 1.
 /// Triangles with a repeated corner are dropped from the input. Throws std::invalid_argument

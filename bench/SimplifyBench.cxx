@@ -448,8 +448,9 @@ void Print(const char* name, std::size_t in, const Row& row)
     double(in - row.Out) / row.Seconds / 1e6, row.Hausdorff, row.NormalAngle);
 }
 
-/// One input for the simplifiers: ours keeps each region within its quota, meshoptimizer
-/// (which has no regions) the whole within their sum.
+/// One input for the simplifiers: ours keeps each region within its quota and the whole within
+/// TotalQuota, meshoptimizer (which has no regions) the whole within the smaller of the sum of
+/// the quotas and TotalQuota.
 struct Case
 {
   std::string Title;
