@@ -54,15 +54,18 @@ inline void AddPlane(double* q, const double n[3], double d, double w)
 /// Sets q (Size(attributes) doubles) to a triangle's quadric, weighted by w: its plane
 /// n.p + d = 0 (n of unit length) and the linear field g[3j..3j+3), d[j] of each attribute j.
 /// Written at once rather than added into a zeroed record: the simplifier does this for every
-/// triangle of every diamond.
-inline void SetTriangle(double* q, const double n[3], double d, int attributes, const double* g,
+/// triangle of every diamond. Fixed, when not negative, is the attribute count as a constant
+/// (see EvaluateWith).
+template <int Fixed>
+inline void SetTriangleWith(double* q, const double n[3], double d, int attributes, const double* g,
   const double* offsets, double w)
 {
+  const int count = Fixed >= 0 ? Fixed : attributes;
   double a[10];
   PlaneTerms(n, d, w, a);
   double* G = q + 11;
-  double* D = G + 3 * attributes;
-  for (int j = 0; j < attributes; ++j)
+  double* D = G + 3 * count;
+  for (int j = 0; j < count; ++j)
   {
     const double* gj = g + 3 * j;
     const double wg[3] = { w * gj[0], w * gj[1], w * gj[2] };
@@ -86,7 +89,13 @@ inline void SetTriangle(double* q, const double n[3], double d, int attributes, 
   {
     q[i] = a[i];
   }
-  q[10] = attributes > 0 ? w : 0;
+  q[10] = count > 0 ? w : 0;
+}
+
+inline void SetTriangle(double* q, const double n[3], double d, int attributes, const double* g,
+  const double* offsets, double w)
+{
+  SetTriangleWith<-1>(q, n, d, attributes, g, offsets, w);
 }
 
 /// q += r over n doubles (Size(m), or a longer record holding a quadric). Records never

@@ -165,6 +165,10 @@ private:
   void AssignRegions();
   void Classify(std::uint32_t u);
   void BuildQuadrics();
+  /// BuildQuadrics with the attribute count Fixed as a constant (see Quadric::EvaluateWith):
+  /// it runs for every triangle of every diamond.
+  template <int Fixed>
+  void BuildQuadricsWith();
   /// Drops u's removed corners from its run, and points Fan at it.
   void GatherFan(std::uint32_t u);
   bool CanCollapse(std::uint32_t u, std::uint32_t v);
@@ -624,9 +628,29 @@ void Simplifier::Classify(std::uint32_t u)
 
 void Simplifier::BuildQuadrics()
 {
-  const std::size_t size = Quadric::Size(Attributes);
-  RecordSize = size + 1;
+  RecordSize = Quadric::Size(Attributes) + 1;
   Records.assign(RecordSize * VertexCount, 0.0);
+  switch (Attributes)
+  {
+    case 0:
+      return BuildQuadricsWith<0>();
+    case 3:
+      return BuildQuadricsWith<3>();
+    case 4:
+      return BuildQuadricsWith<4>();
+    case 7:
+      return BuildQuadricsWith<7>();
+    default:
+      return BuildQuadricsWith<-1>();
+  }
+}
+
+template <int Fixed>
+void Simplifier::BuildQuadricsWith()
+{
+  const int attributes = Fixed >= 0 ? Fixed : Attributes;
+  const std::size_t size = Quadric::Size(attributes);
+  const std::size_t recordSize = size + 1;
   double q[Quadric::Size(MaxAttributes) + 1];
   for (std::size_t t = 0; t < TriangleCount; ++t)
   {
@@ -655,7 +679,7 @@ void Simplifier::BuildQuadrics()
     // Hoppe's linear attribute field over the triangle: g.p + d equals the attribute at the
     // corners, with g in the triangle's plane.
     double g[3 * MaxAttributes], offset[MaxAttributes];
-    if (Attributes > 0)
+    if (attributes > 0)
     {
       double c1[3], c2[3];
       Cross(e2, n, c1);
@@ -663,7 +687,7 @@ void Simplifier::BuildQuadrics()
       const double* s0 = AttributesOf(tri[0]);
       const double* s1 = AttributesOf(tri[1]);
       const double* s2 = AttributesOf(tri[2]);
-      for (int j = 0; j < Attributes; ++j)
+      for (int j = 0; j < attributes; ++j)
       {
         const double d1 = (s1[j] - s0[j]) / length;
         const double d2 = (s2[j] - s0[j]) / length;
@@ -674,9 +698,9 @@ void Simplifier::BuildQuadrics()
         offset[j] = s0[j] - Dot(g + 3 * j, p0);
       }
     }
-    Quadric::SetTriangle(q, n, d, Attributes, g, offset, area);
+    Quadric::SetTriangleWith<Fixed>(q, n, d, attributes, g, offset, area);
     q[size] = area;
-    Quadric::AddToCorners(Record(tri[0]), Record(tri[1]), Record(tri[2]), q, RecordSize);
+    Quadric::AddToCorners(Record(tri[0]), Record(tri[1]), Record(tri[2]), q, recordSize);
 
     for (int k = 0; k < 3; ++k)
     {
