@@ -366,6 +366,32 @@ bool BucketStore::AddToPage(std::size_t frame, const SoupTriangle& triangle, Buc
   return true;
 }
 
+void BucketStore::Prefetch(BucketIndex bucket, const SoupTriangle& triangle) const
+{
+  if (bucket >= Buckets.Size())
+  {
+    return;
+  }
+  __builtin_prefetch(&LastTriangles[bucket & (LastTriangleSlots - 1)]);
+  const PageIndex page = Buckets[bucket].LastPage;
+  if (page == NoPage || Pages[page].Frame == NotResident)
+  {
+    return;
+  }
+  const std::size_t frame = std::size_t(Pages[page].Frame);
+  __builtin_prefetch(FrameData(frame));
+  if (!CornersIndexed[frame])
+  {
+    return;
+  }
+  const std::uint16_t* table = CornerTable(frame);
+  for (int k = 0; k < 3; ++k)
+  {
+    const Corner corner = CornerOf(triangle, k);
+    __builtin_prefetch(table + (HashCorner(corner.Low, corner.High) & (CornerTableSlots - 1)));
+  }
+}
+
 void BucketStore::Append(BucketIndex bucketIndex, const SoupTriangle& triangle)
 {
   if (bucketIndex >= Buckets.Size())

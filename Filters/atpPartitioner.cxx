@@ -12,6 +12,9 @@ constexpr std::size_t Group = 256;
 /// stream touches few leaves and the top of the forest in that time, whatever the forest's
 /// size, and takes those pages back in well under a millisecond.
 constexpr std::uint64_t ReleaseInterval = std::uint64_t(1) << 20;
+/// Appends ahead of the current one whose memory is prefetched (a leaf located for the group
+/// may split before its turn: then the hint is wasted, nothing else).
+constexpr std::size_t PrefetchDistance = 16;
 /// Nodes Stats reads between two releases.
 constexpr std::size_t StatsNodesPerRelease = std::size_t(1) << 16;
 }
@@ -79,6 +82,10 @@ void Partitioner::Insert(const SoupTriangle* triangles, const double (*centroids
     Tetrahedra.LeavesContaining(centroids + first, leaves, n, Hint);
     for (std::size_t i = 0; i < n; ++i)
     {
+      if (i + PrefetchDistance < n)
+      {
+        Buckets.Prefetch(std::uint32_t(leaves[i + PrefetchDistance]), triangles[first + i + PrefetchDistance]);
+      }
       const double* centroid = centroids[first + i];
       TetraForest::NodeIndex leaf = Tetrahedra.Descend(leaves[i], centroid);
       Buckets.Append(std::uint32_t(leaf), triangles[first + i]);

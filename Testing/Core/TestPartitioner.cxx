@@ -67,7 +67,8 @@ Box BoxOf(const std::vector<SoupTriangle>& soup)
 } // namespace
 
 /// Appends, evicts, recycles and reads back triangles, with their colors or without (then
-/// they come back opaque white).
+/// they come back opaque white). Prefetches go to buckets of every kind along the way (the
+/// next one appended, evicted ones, ones that do not exist yet): they must change nothing.
 void CheckEvictionAndReuse(bool colors)
 {
   // Eight frames for hundreds of buckets: almost every append evicts a page to disk.
@@ -86,6 +87,8 @@ void CheckEvictionAndReuse(bool colors)
     }
     t.Normals[1][0] = std::int16_t(i);
     std::memset(t.Colors, i & 0xff, sizeof(t.Colors));
+    store.Prefetch(bucket, t);
+    store.Prefetch(std::uint32_t(rng() % 400), t);
     store.Append(bucket, t);
     if (!colors)
     {
