@@ -12,7 +12,8 @@
 // - the diamonds of a build of MESH, up to N of each level (--diamonds=N): each exactly what the
 //   build hands our simplifier (its children's patches merged, one region per member, the
 //   build's quotas: the budget per member, half of the children in all); meshoptimizer, which
-//   has no regions, gets the total.
+//   has no regions, gets the total. The time ratio is also given level by level; a large N
+//   (--diamonds=100000) takes every diamond, so that the levels weigh as in the build.
 // --speed-only skips the error measures (for profiling the simplifiers: they take most of the
 // run otherwise); --normal-weight=W sets SimplifyOptions::NormalWeight of the first variant
 // (default: the library's).
@@ -459,6 +460,7 @@ struct Case
   RegionFunction RegionOf = [](const double*, int) { return 0; };
   std::vector<std::uint32_t> Quotas;
   std::uint64_t TotalQuota = UINT64_MAX; ///< at most this many in all (SimplifyOptions)
+  int Level = 0; ///< a diamond's level counted from the finest that simplifies (1); 0: a chunk
 };
 
 /// Chunks of `mesh`, each of about `target` triangles around a vertex, to be halved.
@@ -572,6 +574,7 @@ std::vector<Case> Diamonds(const std::string& path, std::size_t perLevel)
     diamond.Quotas = quotas.Members;
     diamond.TotalQuota = quotas.Total;
     const auto open = CountOpenEdges(diamond.Mesh);
+    diamond.Level = runner.Levels[j];
     diamond.Title = "diamond, level " + std::to_string(runner.Levels[j]) + " up: " +
       std::to_string(diamond.Mesh.TriangleCount()) + " triangles, " + std::to_string(open.second) +
       " locked edges, " + std::to_string(open.first) + " hole edges, " + std::to_string(diamond.Regions) +
@@ -657,6 +660,10 @@ int main(int argc, char** argv)
   // Per input, each variant's Hausdorff distance over meshoptimizer's: the mean of maxima above
   // follows a few inputs' worst points, so the comparison is also made input by input.
   std::vector<double> errorRatios[4];
+  // Per level of diamonds: input triangles, and the seconds of ours (with normals) and of
+  // meshoptimizer. A build's time goes mostly to the fine levels (each halves the one below),
+  // which the sample of a few diamonds a level underweights.
+  std::map<int, std::array<double, 3>> byLevel;
   const char* names[4] = { "ours (normals weighted)", "ours (positions only)", "meshopt LockBorder",
     "ours, one region" };
   for (const Case& input : cases)
@@ -726,6 +733,10 @@ int main(int argc, char** argv)
       errorRatios[v].push_back(theirs > 0 ? ours / theirs : (ours > 0 ? HUGE_VAL : 1.0));
     }
     sumIn += mesh.TriangleCount();
+    std::array<double, 3>& level = byLevel[input.Level];
+    level[0] += double(mesh.TriangleCount());
+    level[1] += rows[0].Seconds;
+    level[2] += rows[2].Seconds;
   }
   std::printf("\nall inputs (time and rate summed, errors averaged):\n");
   std::printf("  %-26s %7s %9s %12s %14s %10s\n", "", "out", "ms", "Mtri/s rem.", "Hausdorff/diag", "normal°");
@@ -747,6 +758,15 @@ int main(int argc, char** argv)
     std::printf("  %-26s Hausdorff over meshopt's: median %.3f; under on %td, level on %td, over on %td"
                 " of %zu inputs\n",
       names[v], median, level.first - ratios.begin(), level.second - level.first, ratios.end() - level.second, n);
+  }
+  if (byLevel.size() > 1)
+  {
+    std::printf("time against meshopt_simplify's by level (with normals):");
+    for (const auto& [level, figures] : byLevel)
+    {
+      std::printf(" %d up %.2fx (%.0fk triangles);", level, figures[1] / figures[2], figures[0] / 1000);
+    }
+    std::printf("\n");
   }
   // Both run in the same process, input after input: the ratio holds still where this machine's
   // speed drifts (by 25-50% within minutes), so runs of different builds compare by it.
