@@ -54,8 +54,9 @@ public:
   {
     return bucket < Buckets.Size() ? Buckets[bucket].Count : 0;
   }
-  /// Starts loading what appending the triangle to the bucket will read: the bucket's record,
-  /// its last page's header and the lookup slots of the triangle's corners. A caller that
+  /// Starts loading what appending the triangle to the bucket will read: the bucket's record
+  /// and last-triangle entry, its last page's header and the lookup slots of the triangle's
+  /// corners. A caller that
   /// knows its next appends overlaps their cache misses, which are most of an append's time.
   /// Only a hint: it changes nothing, and does nothing for a page that is not in memory.
   void Prefetch(BucketIndex bucket, const SoupTriangle& triangle) const;

@@ -92,6 +92,7 @@ inline void SetTriangleWith(double* q, const double n[3], double d, int attribut
   q[10] = count > 0 ? w : 0;
 }
 
+/// SetTriangleWith for any attribute count.
 inline void SetTriangle(double* q, const double n[3], double d, int attributes, const double* g,
   const double* offsets, double w)
 {

@@ -13,7 +13,8 @@
 //   build hands our simplifier (its children's patches merged, one region per member, the
 //   build's quotas: the budget per member, half of the children in all); meshoptimizer, which
 //   has no regions, gets the total. The time ratio is also given level by level; a large N
-//   (--diamonds=100000) takes every diamond, so that the levels weigh as in the build.
+//   (--diamonds=100000) takes every diamond, so that the levels weigh as in the build (half a
+//   minute for the bundled torus with --speed-only, over half an hour for the brain).
 // --speed-only skips the error measures (for profiling the simplifiers: they take most of the
 // run otherwise); --normal-weight=W sets SimplifyOptions::NormalWeight of the first variant
 // (default: the library's).
