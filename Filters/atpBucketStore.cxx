@@ -35,10 +35,11 @@ void PutU16(unsigned char* p, std::uint16_t v)
   std::memcpy(p, &v, sizeof(v));
 }
 
-std::size_t HashCorner(std::uint64_t low, std::uint64_t high)
+/// The slot of a corner table where the lookup of the corner with these key words starts.
+std::size_t FirstSlot(std::uint64_t low, std::uint64_t high)
 {
   const std::uint64_t h = low * 0x9E3779B97F4A7C15ull ^ high * 0xC2B2AE3D27D4EB4Full;
-  return std::size_t(h ^ (h >> 31));
+  return std::size_t(h ^ (h >> 31)) & (CornerTableSlots - 1);
 }
 } // namespace
 
@@ -282,7 +283,7 @@ void BucketStore::IndexCorners(std::size_t frame)
   for (std::size_t c = 0; c < corners; ++c)
   {
     const Corner corner = CornerAt(page + PageHeaderBytes + c * CornerBytes);
-    std::size_t slot = HashCorner(corner.Low, corner.High) & (CornerTableSlots - 1);
+    std::size_t slot = FirstSlot(corner.Low, corner.High);
     while (table[slot] != 0)
     {
       slot = (slot + 1) & (CornerTableSlots - 1);
@@ -296,7 +297,7 @@ int BucketStore::CornerIndex(std::size_t frame, const Corner& corner)
 {
   unsigned char* page = FrameData(frame);
   std::uint16_t* table = CornerTable(frame);
-  std::size_t slot = HashCorner(corner.Low, corner.High) & (CornerTableSlots - 1);
+  std::size_t slot = FirstSlot(corner.Low, corner.High);
   for (; table[slot] != 0; slot = (slot + 1) & (CornerTableSlots - 1))
   {
     const std::size_t c = table[slot] - 1u;
@@ -388,7 +389,7 @@ void BucketStore::Prefetch(BucketIndex bucket, const SoupTriangle& triangle) con
   for (int k = 0; k < 3; ++k)
   {
     const Corner corner = CornerOf(triangle, k);
-    __builtin_prefetch(table + (HashCorner(corner.Low, corner.High) & (CornerTableSlots - 1)));
+    __builtin_prefetch(table + FirstSlot(corner.Low, corner.High));
   }
 }
 
