@@ -5,6 +5,7 @@
 #define atpQuadric_h
 
 #include <cstddef>
+#include <type_traits>
 
 namespace atp
 {
@@ -142,22 +143,32 @@ inline double EvaluateWith(const double* q, int attributes, const double p[3], c
   return e;
 }
 
-/// Q(p, s) for any attribute count, the simplifier's (nothing, normals, colors, both) unrolled.
-inline double Evaluate(const double* q, int attributes, const double p[3], const double* s)
+/// Calls run(std::integral_constant<int, N>()) with N the attribute count as a constant for
+/// the simplifier's counts (nothing, normals, colors, both), -1 for any other: the attribute
+/// loops of the With functions then unroll.
+template <typename Run>
+inline decltype(auto) WithAttributeCount(int attributes, Run&& run)
 {
   switch (attributes)
   {
     case 0:
-      return EvaluateWith<0>(q, attributes, p, s);
+      return run(std::integral_constant<int, 0>());
     case 3:
-      return EvaluateWith<3>(q, attributes, p, s);
+      return run(std::integral_constant<int, 3>());
     case 4:
-      return EvaluateWith<4>(q, attributes, p, s);
+      return run(std::integral_constant<int, 4>());
     case 7:
-      return EvaluateWith<7>(q, attributes, p, s);
+      return run(std::integral_constant<int, 7>());
     default:
-      return EvaluateWith<-1>(q, attributes, p, s);
+      return run(std::integral_constant<int, -1>());
   }
+}
+
+/// Q(p, s) for any attribute count.
+inline double Evaluate(const double* q, int attributes, const double p[3], const double* s)
+{
+  return WithAttributeCount(attributes,
+    [&](auto fixed) { return EvaluateWith<decltype(fixed)::value>(q, attributes, p, s); });
 }
 
 } // namespace Quadric

@@ -165,7 +165,7 @@ private:
   void AssignRegions();
   void Classify(std::uint32_t u);
   void BuildQuadrics();
-  /// BuildQuadrics with the attribute count Fixed as a constant (see Quadric::EvaluateWith):
+  /// BuildQuadrics with the attribute count Fixed as a constant (Quadric::WithAttributeCount):
   /// it runs for every triangle of every diamond.
   template <int Fixed>
   void BuildQuadricsWith();
@@ -630,19 +630,7 @@ void Simplifier::BuildQuadrics()
 {
   RecordSize = Quadric::Size(Attributes) + 1;
   Records.assign(RecordSize * VertexCount, 0.0);
-  switch (Attributes)
-  {
-    case 0:
-      return BuildQuadricsWith<0>();
-    case 3:
-      return BuildQuadricsWith<3>();
-    case 4:
-      return BuildQuadricsWith<4>();
-    case 7:
-      return BuildQuadricsWith<7>();
-    default:
-      return BuildQuadricsWith<-1>();
-  }
+  Quadric::WithAttributeCount(Attributes, [this](auto fixed) { BuildQuadricsWith<decltype(fixed)::value>(); });
 }
 
 template <int Fixed>
