@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 
 namespace atp
@@ -148,6 +149,19 @@ struct FanView
   std::uint32_t operator[](std::size_t i) const { return First[i]; }
 };
 
+/// A closed piece of the mesh (a connected component with no locked vertex), which collapses
+/// cannot shrink below a tetrahedron: an isosurface's specks end as such, and at the coarsest
+/// levels they held most of the budget (579 tetrahedra, 2,316 of the brain's 3,271 triangles).
+struct Piece
+{
+  double Radius2 = 0;         ///< squared distance from Center to its farthest vertex
+  double Center[3] = { 0, 0, 0 };
+  std::uint32_t First = 0;    ///< its triangles: PieceTriangles[First, First + Count)
+  std::uint32_t Count = 0;
+  std::uint32_t Smallest = 0; ///< its smallest vertex: orders pieces of equal radius
+  bool Removed = false;
+};
+
 /// One call's state. A vertex's fan is a run of corners (CornerOf) in one pool, in the order of
 /// a walk around it; removed triangles drop out lazily as fans are gathered. A collapse writes
 /// the target's new fan at the end of the pool. Runs rather than lists linked through the
@@ -216,6 +230,14 @@ private:
   template <typename Consider>
   void ForEachCollapse(std::uint32_t u, Consider consider);
   void Queue(std::uint32_t u, const Candidate& candidate);
+  /// Sum over regions of max(0, count - quota), plus max(0, Total - TotalQuota).
+  std::int64_t ExcessOverQuotas() const;
+  /// Finds the closed pieces (Piece), smallest first.
+  void FindPieces();
+  /// Removes the smallest closed piece with a triangle in a region over quota, its vertices
+  /// counted as moved to its center; false when there is none. Unless anySize, only a piece
+  /// within the deviation the collapses made so far: its removal leaves the error as it is.
+  bool RemoveSmallestPiece(bool anySize);
   /// Change of the total excess over the quotas if u moves onto v; fills MovedRegions.
   std::int64_t ExcessChange(std::uint32_t u, std::uint32_t v);
   void Collapse(std::uint32_t u, std::uint32_t v);
@@ -275,7 +297,7 @@ private:
   const double* AttributesOf(std::uint32_t v) const { return &Point[PointSize * v + 3]; }
   double* Record(std::uint32_t v) { return &Records[RecordSize * v]; }
   const double* Record(std::uint32_t v) const { return &Records[RecordSize * v]; }
-  /// The largest distance from an input vertex to the output surface (see SimplifyResult).
+  /// The largest distance from an input vertex to the mesh as it stands (see SimplifyResult).
   double Deviation();
   PatchMesh Extract(const std::vector<std::uint32_t>& triangles);
 
@@ -302,7 +324,8 @@ private:
   /// collapses (Quadric::Size(Attributes) doubles), then the total weight of its planes.
   std::size_t RecordSize = 0;
   std::vector<double> Records;
-  std::vector<std::uint32_t> Into; // per removed vertex: the vertex it collapsed onto
+  /// Per removed vertex: the vertex it collapsed onto, itself when it vanished with its piece.
+  std::vector<std::uint32_t> Into;
   std::vector<std::uint32_t> CollapseOrder; // the removed vertices, first collapsed first
   std::vector<VertexKind> Kind;
   std::vector<Candidate> Best; // per vertex: its queued collapse
@@ -312,8 +335,16 @@ private:
   std::size_t RegionsOver = 0;                // regions over their quotas
   std::int64_t Total = 0;                     // live triangles in all
   const std::int64_t TotalQuota;              // while Total is over it, every region is over
-  /// Sum over regions of max(0, count - quota), plus max(0, Total - TotalQuota).
-  std::int64_t Excess = 0;
+  std::int64_t Excess = 0; ///< ExcessOverQuotas(), kept current
+  /// Found the first time the regions over quota have no legal collapse left, which few calls
+  /// reach: most never pay for the search.
+  bool PiecesFound = false;
+  std::vector<Piece> Pieces;
+  std::vector<std::uint32_t> PieceTriangles;
+  std::vector<std::uint32_t> PieceOf; // per vanished vertex: its piece
+  std::size_t Vanished = 0;           // vertices removed with their pieces
+  double Deviation2 = 0;              // Deviation() squared, measured after MeasuredCollapses
+  std::size_t MeasuredCollapses = 0;
   /// Collapses that would also remove triangles of regions within their quotas wait here, and
   /// are taken only when the over-quota regions have nothing else left (Relaxed).
   std::vector<std::uint32_t> Deferred;
@@ -513,11 +544,17 @@ void Simplifier::AssignRegions()
     Faces[t].Region = RegionOf(centroid, t > 0 ? Faces[t - 1].Region : 0);
     CountTriangles(Faces[t].Region, 1);
   }
+  Excess = ExcessOverQuotas();
+}
+
+std::int64_t Simplifier::ExcessOverQuotas() const
+{
+  std::int64_t excess = std::max<std::int64_t>(0, Total - TotalQuota);
   for (int r = 0; r < RegionCount; ++r)
   {
-    Excess += std::max<std::int64_t>(0, Counts[std::size_t(r)] - std::int64_t(Quotas[std::size_t(r)]));
+    excess += std::max<std::int64_t>(0, Counts[std::size_t(r)] - std::int64_t(Quotas[std::size_t(r)]));
   }
-  Excess += std::max<std::int64_t>(0, Total - TotalQuota);
+  return excess;
 }
 
 void Simplifier::GatherFan(std::uint32_t u)
@@ -1162,6 +1199,160 @@ void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
   Quadric::Add(Record(v), Record(u), RecordSize);
 }
 
+void Simplifier::FindPieces()
+{
+  PiecesFound = true;
+  // Union-find over the vertices of the live triangles.
+  std::vector<std::uint32_t> root(VertexCount);
+  std::iota(root.begin(), root.end(), 0u);
+  const auto find = [&](std::uint32_t x) {
+    while (root[x] != x)
+    {
+      root[x] = root[root[x]];
+      x = root[x];
+    }
+    return x;
+  };
+  const auto live = [&](std::uint32_t t) { return !Faces[t].Removed; };
+  for (std::uint32_t t = 0; t < TriangleCount; ++t)
+  {
+    for (int k = 1; k < 3 && live(t); ++k)
+    {
+      const std::uint32_t a = find(Faces[t].V[0]);
+      const std::uint32_t b = find(Faces[t].V[k]);
+      root[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  // A component whose vertices are all Free (none locked, none on an open edge) is closed.
+  std::vector<std::uint8_t> closed(VertexCount, 1);
+  for (std::uint32_t t = 0; t < TriangleCount; ++t)
+  {
+    for (int k = 0; k < 3 && live(t); ++k)
+    {
+      closed[find(Faces[t].V[k])] &= std::uint8_t(Kind[Faces[t].V[k]] == VertexKind::Free);
+    }
+  }
+  std::vector<std::uint32_t> pieceOfRoot(VertexCount, None);
+  std::vector<std::uint32_t> pieceOfTriangle(TriangleCount, None);
+  for (std::uint32_t t = 0; t < TriangleCount; ++t)
+  {
+    const std::uint32_t r = live(t) ? find(Faces[t].V[0]) : None;
+    if (r == None || !closed[r])
+    {
+      continue;
+    }
+    if (pieceOfRoot[r] == None)
+    {
+      pieceOfRoot[r] = std::uint32_t(Pieces.size());
+      Pieces.emplace_back();
+      Pieces.back().Smallest = r; // a root is the smallest vertex of its set
+    }
+    pieceOfTriangle[t] = pieceOfRoot[r];
+    ++Pieces[pieceOfRoot[r]].Count;
+  }
+  std::uint32_t first = 0;
+  for (Piece& piece : Pieces)
+  {
+    piece.First = first;
+    first += piece.Count;
+    piece.Count = 0;
+  }
+  PieceTriangles.resize(first);
+  for (std::uint32_t t = 0; t < TriangleCount; ++t)
+  {
+    if (pieceOfTriangle[t] != None)
+    {
+      Piece& piece = Pieces[pieceOfTriangle[t]];
+      PieceTriangles[piece.First + piece.Count++] = t;
+    }
+  }
+  // Centered on its box, in input coordinates as the error is measured.
+  for (Piece& piece : Pieces)
+  {
+    double lo[3] = { 1e300, 1e300, 1e300 };
+    double hi[3] = { -1e300, -1e300, -1e300 };
+    for (std::uint32_t i = piece.First; i < piece.First + piece.Count; ++i)
+    {
+      for (std::uint32_t v : Faces[PieceTriangles[i]].V)
+      {
+        for (std::size_t a = 0; a < 3; ++a)
+        {
+          lo[a] = std::min(lo[a], double(Mesh.Positions[3 * std::size_t(v) + a]));
+          hi[a] = std::max(hi[a], double(Mesh.Positions[3 * std::size_t(v) + a]));
+        }
+      }
+    }
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      piece.Center[a] = (lo[a] + hi[a]) / 2;
+      piece.Radius2 += (hi[a] - lo[a]) * (hi[a] - lo[a]) / 4;
+    }
+  }
+  std::sort(Pieces.begin(), Pieces.end(), [](const Piece& a, const Piece& b) {
+    return a.Radius2 < b.Radius2 || (a.Radius2 == b.Radius2 && a.Smallest < b.Smallest);
+  });
+}
+
+bool Simplifier::RemoveSmallestPiece(bool anySize)
+{
+  if (!PiecesFound)
+  {
+    FindPieces();
+  }
+  const std::size_t collapses = CollapseOrder.size() - Vanished;
+  if (!anySize && collapses != MeasuredCollapses)
+  {
+    const double deviation = Deviation();
+    Deviation2 = deviation * deviation;
+    MeasuredCollapses = collapses;
+  }
+  for (std::size_t i = 0; i < Pieces.size(); ++i)
+  {
+    Piece& piece = Pieces[i];
+    const std::uint32_t* first = PieceTriangles.data() + piece.First;
+    const std::uint32_t* last = first + piece.Count;
+    if (!anySize && piece.Radius2 > Deviation2)
+    {
+      return false; // and so are all after it
+    }
+    if (piece.Removed || std::none_of(first, last, [&](std::uint32_t t) {
+          return !Faces[t].Removed && OverQuota(Faces[t].Region);
+        }))
+    {
+      continue;
+    }
+    piece.Removed = true;
+    PieceOf.resize(VertexCount, None);
+    for (const std::uint32_t* t = first; t != last; ++t)
+    {
+      Face& face = Faces[*t];
+      if (face.Removed)
+      {
+        continue; // collapsed away since the pieces were found
+      }
+      face.Removed = 1;
+      CountTriangles(face.Region, -1);
+      for (std::uint32_t v : face.V)
+      {
+        if (Kind[v] != VertexKind::Removed)
+        {
+          Kind[v] = VertexKind::Removed;
+          Best[v] = Candidate();
+          Waiting.Remove(v);
+          Fans[v] = FanSlice();
+          Into[v] = v;
+          PieceOf[v] = std::uint32_t(i);
+          CollapseOrder.push_back(v);
+          ++Vanished;
+        }
+      }
+    }
+    Excess = ExcessOverQuotas();
+    return true;
+  }
+  return false;
+}
+
 SimplifyResult Simplifier::Run()
 {
   LinkCorners();
@@ -1202,6 +1393,14 @@ SimplifyResult Simplifier::Run()
         {
           Evaluate(u, false);
         }
+        continue;
+      }
+      // A closed piece within the error made so far goes before the guard relaxes: it costs no
+      // error, where a fin or a face against its normals shows and is not measured. Larger ones
+      // go only when nothing else is left: their removal enters the error, so the cut refines
+      // before it can show.
+      if (RemoveSmallestPiece(Facing == FacingGuard::Off))
+      {
         continue;
       }
       if (Facing == FacingGuard::Off) // the guards are off already: nothing legal is left at all
@@ -1290,7 +1489,8 @@ SimplifyResult Simplifier::Run()
 
   SimplifyResult result;
   result.Error = Deviation();
-  result.Collapses = CollapseOrder.size();
+  result.Collapses = CollapseOrder.size() - Vanished;
+  result.PiecesRemoved = std::size_t(std::count_if(Pieces.begin(), Pieces.end(), [](const Piece& p) { return p.Removed; }));
   result.TrianglesOverQuotas = std::uint64_t(Excess);
   std::vector<std::vector<std::uint32_t>> byRegion(static_cast<std::size_t>(RegionCount));
   for (std::uint32_t t = 0; t < TriangleCount; ++t)
@@ -1369,12 +1569,20 @@ double Simplifier::Deviation()
   {
     const std::uint32_t u = *removed;
     std::uint32_t v = Into[u];
-    while (Kind[v] == VertexKind::Removed)
+    while (Kind[v] == VertexKind::Removed && Into[v] != v)
     {
       v = Into[v];
     }
     Into[u] = v; // earlier collapses that ended here find it at once
     at(u, p);
+    if (Kind[v] == VertexKind::Removed)
+    {
+      // Vanished with its piece: counted as moved to the piece's center.
+      double e[3];
+      Sub(p, Pieces[PieceOf[v]].Center, e);
+      max2 = std::max(max2, Dot(e, e));
+      continue;
+    }
     std::uint32_t closest = None;
     double nearest2 = fanDistance2(v, closest);
     for (bool moved = closest != None; moved && nearest2 > max2 && !inside;)

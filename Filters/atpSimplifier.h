@@ -47,10 +47,12 @@ struct SimplifyResult
   /// an input vertex to the output surface (an upper bound of it: each removed vertex is measured
   /// exactly, in double, against the output triangles around the vertex it collapsed into).
   /// Output vertices are input vertices, so this is the one-sided Hausdorff distance from the
-  /// input's vertices to the output; callers add the children's errors on top. 0 when nothing
-  /// collapsed.
+  /// input's vertices to the output; callers add the children's errors on top. A removed piece's
+  /// vertices count as moved to the center of its box. 0 when nothing collapsed.
   double Error = 0;
   std::size_t Collapses = 0;
+  /// Closed pieces removed whole (see Simplify).
+  std::size_t PiecesRemoved = 0;
   /// Triangles above the quotas, summed over the regions that end over theirs, plus those
   /// above the total quota: locked or topologically constrained geometry can keep some.
   std::uint64_t TrianglesOverQuotas = 0;
@@ -66,7 +68,10 @@ struct SimplifyResult
 /// breaks manifoldness (link condition). None turns a face more than about 80 degrees from the
 /// input normal of any of its corners unless a region cannot meet its quota otherwise, nor
 /// against it unless a region cannot meet its quota even then (at coarse levels, the input
-/// normals of the few vertices kept no longer describe the surface).
+/// normals of the few vertices kept no longer describe the surface). Before either of these,
+/// when no legal collapse is left for the regions over their quotas, closed pieces (connected
+/// components with no locked vertex and no open edge, such as the tetrahedra an isosurface's
+/// specks end as) with a triangle in such a region are removed whole, smallest box first.
 /// Deterministic and reentrant: concurrent calls on different meshes are safe. regionOf is
 /// not called when regionCount is 1.
 /// Triangles with a repeated corner are dropped from the input. Throws std::invalid_argument

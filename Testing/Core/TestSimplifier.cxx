@@ -836,12 +836,18 @@ double LeastFacingOfNewFaces(const PatchMesh& in, const PatchMesh& out)
   return least;
 }
 
-/// A plane whose vertex normals lean away from its faces by degreesAt(x) (0: upright): a
-/// collapse there leaves faces at that angle from their corners' normals.
-template <typename Degrees>
-PatchMesh PlaneWithLeaningNormals(Degrees degreesAt)
+double Flat(double, double)
 {
-  PatchMesh mesh = Grid(20, [](double, double) { return 0.25; }, false);
+  return 0.25;
+}
+
+/// A grid, flat unless another height is given, whose vertex normals lean away from +z by
+/// degreesAt(x) (0: upright): a collapse there leaves faces at about that angle from their
+/// corners' normals.
+template <typename Degrees>
+PatchMesh GridWithLeaningNormals(Degrees degreesAt, double (*height)(double, double) = Flat)
+{
+  PatchMesh mesh = Grid(20, height, false);
   for (std::size_t v = 0; v < mesh.VertexCount(); ++v)
   {
     const double radians = degreesAt(double(mesh.Positions[3 * v])) * 3.14159265358979323846 / 180;
@@ -856,7 +862,7 @@ TEST(Simplifier, FacesNearlyEdgeOnToTheirNormalsOnlyWhenAQuotaNeedsThem)
 {
   // Leaning where x < 1/2, upright elsewhere.
   const auto leaning = [](double degrees) {
-    return PlaneWithLeaningNormals([degrees](double x) { return x < 0.5 ? degrees : 0.0; });
+    return GridWithLeaningNormals([degrees](double x) { return x < 0.5 ? degrees : 0.0; });
   };
   const double cos80 = std::cos(80 * 3.14159265358979323846 / 180);
   // 800 triangles to 600: the upright half alone can give up 200.
@@ -886,7 +892,7 @@ TEST(Simplifier, FacesAgainstTheirNormalsOnlyAsALastResort)
 {
   // x < 1/4 leans 100 degrees, 1/4 <= x < 1/2 85 degrees, the rest is upright.
   const PatchMesh against =
-    PlaneWithLeaningNormals([](double x) { return x < 0.25 ? 100.0 : (x < 0.5 ? 85.0 : 0.0); });
+    GridWithLeaningNormals([](double x) { return x < 0.25 ? 100.0 : (x < 0.5 ? 85.0 : 0.0); });
   const double cos80 = std::cos(80 * 3.14159265358979323846 / 180);
   // 800 triangles to 600: the upright half gives them up alone.
   const SimplifyResult upright = Simplify(against, 1, OneRegion(), { 600 });
@@ -903,6 +909,92 @@ TEST(Simplifier, FacesAgainstTheirNormalsOnlyAsALastResort)
   EXPECT_TRUE(needed.QuotasMet());
   EXPECT_LE(TriangleTotal(needed), 100u);
   EXPECT_LT(LeastFacingOfNewFaces(against, Joined(needed)), 0.0);
+}
+
+/// Appends a closed tetrahedron, its corner at `corner` and its edges along the axes `size` long,
+/// oriented outward; its vertices are all `size` * sqrt(3) / 2 from the center of its box.
+void AddTetrahedron(PatchMesh& mesh, float x, float y, float z, float size)
+{
+  const std::uint32_t first = std::uint32_t(mesh.VertexCount());
+  mesh.Positions.insert(mesh.Positions.end(), { x, y, z, x + size, y, z, x, y + size, z, x, y, z + size });
+  for (const std::uint32_t corner : { 0u, 2u, 1u, 0u, 1u, 3u, 0u, 3u, 2u, 1u, 2u, 3u })
+  {
+    mesh.Indices.push_back(first + corner);
+  }
+}
+
+// Closed pieces (tetrahedra here, what an isosurface's specks end as) cannot shrink, and can
+// hold most of a coarse patch: with nothing else left for the quota they go whole, smallest
+// first, their vertices counted as moved to the centers of their boxes. Pieces with a locked
+// vertex or an open edge stay.
+TEST(Simplifier, ClosedPiecesGoWholeSmallestFirst)
+{
+  // A strip whose vertices are all on the external boundary: 100 triangles that cannot go.
+  PatchMesh mesh;
+  for (int i = 0; i <= 50; ++i)
+  {
+    mesh.Positions.insert(mesh.Positions.end(), { float(i), 0.f, 0.f, float(i), 1.f, 0.f });
+  }
+  for (std::uint32_t i = 0; i < 50; ++i)
+  {
+    mesh.Indices.insert(mesh.Indices.end(), { 2 * i, 2 * i + 2, 2 * i + 3, 2 * i, 2 * i + 3, 2 * i + 1 });
+  }
+  // Six tetrahedra, the smallest last, and one triangle alone, its edges the input's boundary.
+  const float sizes[6] = { 0.6f, 0.5f, 0.4f, 0.3f, 0.2f, 0.1f };
+  for (int i = 0; i < 6; ++i)
+  {
+    AddTetrahedron(mesh, 5.f * float(i), 5.f, 0.f, sizes[i]);
+  }
+  const std::uint32_t lone = std::uint32_t(mesh.VertexCount());
+  mesh.Positions.insert(mesh.Positions.end(), { 0.f, 10.f, 0.f, 1.f, 10.f, 0.f, 0.f, 11.f, 0.f });
+  mesh.Indices.insert(mesh.Indices.end(), { lone, lone + 1, lone + 2 });
+  ComputeNormals(mesh);
+  MarkOpenEdges(mesh, false);
+  mesh.BoundaryEdges.back() = 7;
+  ASSERT_EQ(mesh.TriangleCount(), 125u);
+
+  // Two tetrahedra must go: the two smallest.
+  const SimplifyResult two = Simplify(mesh, 1, OneRegion(), { 117 });
+  EXPECT_TRUE(two.QuotasMet());
+  EXPECT_EQ(TriangleTotal(two), 117u);
+  EXPECT_EQ(two.PiecesRemoved, 2u);
+  EXPECT_EQ(two.Collapses, 0u);
+  EXPECT_NEAR(two.Error, 0.2 * std::sqrt(3.0) / 2, 1e-6) << "the larger of the two, moved to its center";
+  const std::set<PositionKey> kept = PositionsOf(Joined(two));
+  for (std::uint32_t v = 0; v < mesh.VertexCount(); ++v)
+  {
+    const bool inSmallest = v >= 102 + 4 * 4 && v < lone;
+    EXPECT_EQ(kept.count(KeyOf(mesh, v)), inSmallest ? 0u : 1u) << "vertex " << v;
+  }
+
+  // Out of reach: every tetrahedron goes; the strip and the lone triangle stay.
+  const SimplifyResult all = Simplify(mesh, 1, OneRegion(), { 1 });
+  EXPECT_EQ(all.PiecesRemoved, 6u);
+  EXPECT_EQ(TriangleTotal(all), 101u);
+  EXPECT_EQ(all.TrianglesOverQuotas, 100u);
+  EXPECT_NEAR(all.Error, 0.6 * std::sqrt(3.0) / 2, 1e-6);
+}
+
+// A piece no larger than the deviation the collapses already made goes before a face may turn
+// nearly edge-on to its normals: it costs no error, where the fin shows. A larger one stays
+// while fins can meet the quota: its removal would raise the error.
+TEST(Simplifier, ClosedPiecesWithinTheErrorGoBeforeFins)
+{
+  // As in FacesNearlyEdgeOnToTheirNormalsOnlyWhenAQuotaNeedsThem, but bumpy: its collapses
+  // deviate from it. To 100 triangles, the half with leaning normals must give up some.
+  const PatchMesh steep = GridWithLeaningNormals([](double x) { return x < 0.5 ? 85.0 : 0.0; }, Bumps);
+  for (const float size : { 1e-4f, 1.f })
+  {
+    PatchMesh mesh = steep;
+    AddTetrahedron(mesh, 3.f, 3.f, 3.f, size);
+    ComputeNormals(mesh);
+    std::copy(steep.Normals.begin(), steep.Normals.end(), mesh.Normals.begin());
+    mesh.BoundaryEdges.resize(mesh.TriangleCount(), 0);
+    const SimplifyResult result = Simplify(mesh, 1, OneRegion(), { 100 });
+    EXPECT_TRUE(result.QuotasMet());
+    EXPECT_EQ(result.PiecesRemoved, size < 0.1f ? 1u : 0u) << "tetrahedron of size " << size;
+    EXPECT_LT(result.Error, 0.5);
+  }
 }
 
 TEST(Simplifier, EmptyInput)
