@@ -149,6 +149,21 @@ struct FanView
   std::uint32_t operator[](std::size_t i) const { return First[i]; }
 };
 
+/// Turns the counts of consecutive runs (Start, Count) into their starts, the counts zeroed to
+/// count again as the runs fill; returns the sum of the counts.
+template <typename Runs>
+std::uint32_t StartRuns(Runs& runs)
+{
+  std::uint32_t start = 0;
+  for (auto& run : runs)
+  {
+    run.Start = start;
+    start += run.Count;
+    run.Count = 0;
+  }
+  return start;
+}
+
 /// A closed piece of the mesh (a connected component with no locked vertex), which collapses
 /// cannot shrink below a tetrahedron: an isosurface's specks end as such, and at the coarsest
 /// levels they held most of the budget (579 tetrahedra, 2,316 of the brain's 3,271 triangles).
@@ -156,7 +171,7 @@ struct Piece
 {
   double Radius2 = 0;         ///< squared distance from Center to its farthest vertex
   double Center[3] = { 0, 0, 0 };
-  std::uint32_t First = 0;    ///< its triangles: PieceTriangles[First, First + Count)
+  std::uint32_t Start = 0;    ///< its triangles: PieceTriangles[Start, Start + Count)
   std::uint32_t Count = 0;
   std::uint32_t Smallest = 0; ///< its smallest vertex: orders pieces of equal radius
   bool Removed = false;
@@ -495,13 +510,7 @@ void Simplifier::LinkCorners()
       ++Fans[tri[k]].Count;
     }
   }
-  std::uint32_t start = 0;
-  for (FanSlice& fan : Fans)
-  {
-    fan.Start = start;
-    start += fan.Count;
-    fan.Count = 0;
-  }
+  const std::uint32_t start = StartRuns(Fans);
   // Collapses append fans: room for about as many corners again.
   Corners.reserve(2 * std::size_t(start));
   Corners.resize(start);
@@ -1250,20 +1259,13 @@ void Simplifier::FindPieces()
     pieceOfTriangle[t] = pieceOfRoot[r];
     ++Pieces[pieceOfRoot[r]].Count;
   }
-  std::uint32_t first = 0;
-  for (Piece& piece : Pieces)
-  {
-    piece.First = first;
-    first += piece.Count;
-    piece.Count = 0;
-  }
-  PieceTriangles.resize(first);
+  PieceTriangles.resize(StartRuns(Pieces));
   for (std::uint32_t t = 0; t < TriangleCount; ++t)
   {
     if (pieceOfTriangle[t] != None)
     {
       Piece& piece = Pieces[pieceOfTriangle[t]];
-      PieceTriangles[piece.First + piece.Count++] = t;
+      PieceTriangles[piece.Start + piece.Count++] = t;
     }
   }
   // Centered on its box, in input coordinates as the error is measured.
@@ -1271,7 +1273,7 @@ void Simplifier::FindPieces()
   {
     double lo[3] = { 1e300, 1e300, 1e300 };
     double hi[3] = { -1e300, -1e300, -1e300 };
-    for (std::uint32_t i = piece.First; i < piece.First + piece.Count; ++i)
+    for (std::uint32_t i = piece.Start; i < piece.Start + piece.Count; ++i)
     {
       for (std::uint32_t v : Faces[PieceTriangles[i]].V)
       {
@@ -1309,7 +1311,7 @@ bool Simplifier::RemoveSmallestPiece(bool anySize)
   for (std::size_t i = 0; i < Pieces.size(); ++i)
   {
     Piece& piece = Pieces[i];
-    const std::uint32_t* first = PieceTriangles.data() + piece.First;
+    const std::uint32_t* first = PieceTriangles.data() + piece.Start;
     const std::uint32_t* last = first + piece.Count;
     if (!anySize && piece.Radius2 > Deviation2)
     {

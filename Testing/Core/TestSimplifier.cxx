@@ -506,9 +506,10 @@ TEST(Simplifier, RegionsShareATotalQuota)
   EXPECT_LE(TriangleTotal(capped), half);
 }
 
-TEST(Simplifier, UnreachableQuotaWhenEverythingIsLocked)
+/// A strip one triangle pair wide along x (100 triangles, 102 vertices): once its open edges
+/// are marked diamond-external, every vertex is on them.
+PatchMesh Strip()
 {
-  // A strip one triangle pair wide: every vertex is on the external boundary.
   PatchMesh mesh;
   for (int i = 0; i <= 50; ++i)
   {
@@ -518,6 +519,12 @@ TEST(Simplifier, UnreachableQuotaWhenEverythingIsLocked)
   {
     mesh.Indices.insert(mesh.Indices.end(), { 2 * i, 2 * i + 2, 2 * i + 3, 2 * i, 2 * i + 3, 2 * i + 1 });
   }
+  return mesh;
+}
+
+TEST(Simplifier, UnreachableQuotaWhenEverythingIsLocked)
+{
+  PatchMesh mesh = Strip();
   ComputeNormals(mesh);
   MarkOpenEdges(mesh, false);
   const SimplifyResult result = Simplify(mesh, 1, OneRegion(), { 10 });
@@ -930,15 +937,7 @@ void AddTetrahedron(PatchMesh& mesh, float x, float y, float z, float size)
 TEST(Simplifier, ClosedPiecesGoWholeSmallestFirst)
 {
   // A strip whose vertices are all on the external boundary: 100 triangles that cannot go.
-  PatchMesh mesh;
-  for (int i = 0; i <= 50; ++i)
-  {
-    mesh.Positions.insert(mesh.Positions.end(), { float(i), 0.f, 0.f, float(i), 1.f, 0.f });
-  }
-  for (std::uint32_t i = 0; i < 50; ++i)
-  {
-    mesh.Indices.insert(mesh.Indices.end(), { 2 * i, 2 * i + 2, 2 * i + 3, 2 * i, 2 * i + 3, 2 * i + 1 });
-  }
+  PatchMesh mesh = Strip();
   // Six tetrahedra, the smallest last, and one triangle alone, its edges the input's boundary.
   const float sizes[6] = { 0.6f, 0.5f, 0.4f, 0.3f, 0.2f, 0.1f };
   for (int i = 0; i < 6; ++i)
