@@ -232,10 +232,11 @@ int Build(int argc, char** argv, atp::MpiJobRunner* workers)
     double(p.Buckets.BytesWritten) / (1 << 20), double(p.Buckets.BytesRead) / (1 << 20),
     double(p.Buckets.PeakScratchBytes) / (1 << 20));
   const atp::ConstructionStats& c = builder->GetConstructionStats();
-  std::printf("simplify: %llu diamonds, %s collapses, %llu diamonds over quota (%s triangles over), "
-              "%llu simplified patches over the budget, coarsest error %.3g, %.2fs\n",
+  std::printf("simplify: %llu diamonds, %s collapses, %s closed pieces removed, %llu diamonds over quota "
+              "(%s triangles over), %llu simplified patches over the budget, coarsest error %.3g, %.2fs\n",
     static_cast<unsigned long long>(c.Diamonds), FormatCount(double(c.Collapses)).c_str(),
-    static_cast<unsigned long long>(c.QuotaMisses), FormatCount(double(c.TrianglesOverQuotas)).c_str(),
+    FormatCount(double(c.PiecesRemoved)).c_str(), static_cast<unsigned long long>(c.QuotaMisses),
+    FormatCount(double(c.TrianglesOverQuotas)).c_str(),
     static_cast<unsigned long long>(c.SimplifiedPatchesOverBudget), c.CoarsestError,
     builder->GetConstructionSeconds());
   std::printf("scratch: peak %.1f MiB of patches\n", double(c.PeakScratchBytes) / (1 << 20));

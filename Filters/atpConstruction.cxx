@@ -402,6 +402,7 @@ private:
     Stats.Collapses += made.Collapses;
     Stats.QuotaMisses += made.TrianglesOverQuotas > 0;
     Stats.TrianglesOverQuotas += made.TrianglesOverQuotas;
+    Stats.PiecesRemoved += made.PiecesRemoved;
   }
 
   /// Writes the finished records of a level (`results` in file order) to the node scratch, each

@@ -40,6 +40,8 @@ struct ConstructionStats
   /// kept, not fatal).
   std::uint64_t QuotaMisses = 0;
   std::uint64_t TrianglesOverQuotas = 0; ///< above the diamonds' quotas, summed
+  /// Closed pieces (an isosurface's specks) removed whole where no collapse was left (Simplify).
+  std::uint64_t PiecesRemoved = 0;
   /// Simplified patches above the patch budget, the renderer's unit of work (leaves hold up to
   /// the leaf capacity instead).
   std::uint64_t SimplifiedPatchesOverBudget = 0;

@@ -102,6 +102,7 @@ PatchJobResult SimplifyDiamond(const PatchJobContext& context, PatchJob& job)
   result.Error = simplified.Error + job.ChildError + precision.PositionError(context.Grid);
   result.Collapses = simplified.Collapses;
   result.TrianglesOverQuotas = simplified.TrianglesOverQuotas;
+  result.PiecesRemoved = simplified.PiecesRemoved;
   result.Patches.resize(job.Members.size());
   for (std::size_t i = 0; i < job.Members.size(); ++i)
   {

@@ -66,6 +66,7 @@ struct PatchJobResult
   std::uint64_t Collapses = 0;
   /// Triangles above the diamond's quotas (QuotasOf): see SimplifyResult.
   std::uint64_t TrianglesOverQuotas = 0;
+  std::uint64_t PiecesRemoved = 0; ///< closed pieces removed whole: see Simplify
 };
 
 /// What a diamond job's simplification keeps: each member at most the budget, and the members

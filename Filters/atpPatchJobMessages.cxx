@@ -12,7 +12,7 @@ namespace
 /// The messages' version: one more whenever a message gains, loses or widens a field (the
 /// sizes of the shipped types count themselves). 1: the first; 2: a result carries the
 /// triangles over its quotas instead of a flag. TestPatchJob pins a result message's size.
-constexpr std::uint64_t MessageVersion = 2;
+constexpr std::uint64_t MessageVersion = 3;
 
 static_assert(MessageVersion < 256 && sizeof(SoupTriangle) < 256 && sizeof(Tetra) < 256 &&
     sizeof(Sphere) < 256 && sizeof(NormalCone) < 256,
@@ -227,6 +227,7 @@ void EncodeResult(const PatchJobResult& result, std::vector<std::uint8_t>& out)
   w.Put(result.Error);
   w.Put(result.Collapses);
   w.Put(result.TrianglesOverQuotas);
+  w.Put(result.PiecesRemoved);
 }
 
 void DecodeResult(const std::uint8_t* data, std::size_t bytes, PatchJobResult& out)
@@ -243,6 +244,7 @@ void DecodeResult(const std::uint8_t* data, std::size_t bytes, PatchJobResult& o
   out.Error = r.Get<double>();
   out.Collapses = r.Get<std::uint64_t>();
   out.TrianglesOverQuotas = r.Get<std::uint64_t>();
+  out.PiecesRemoved = r.Get<std::uint64_t>();
   r.ExpectEnd();
 }
 

@@ -168,6 +168,59 @@ TEST(Builder, CountsQuotaMissesAndPatchesOverTheBudget)
   }
 }
 
+/// n^3 tetrahedra with edges `size` long, one unit apart: closed specks, as an isosurface's noise.
+vtkNew<vtkPolyData> Specks(int n, double size)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> triangles;
+  for (int i = 0; i < n * n * n; ++i)
+  {
+    const double x = i % n, y = i / n % n, z = i / (n * n);
+    const vtkIdType first = points->GetNumberOfPoints();
+    points->InsertNextPoint(x, y, z);
+    points->InsertNextPoint(x + size, y, z);
+    points->InsertNextPoint(x, y + size, z);
+    points->InsertNextPoint(x, y, z + size);
+    const vtkIdType faces[4][3] = { { 0, 2, 1 }, { 0, 1, 3 }, { 0, 3, 2 }, { 1, 2, 3 } }; // outward
+    for (const vtkIdType* face : faces)
+    {
+      const vtkIdType corners[3] = { first + face[0], first + face[1], first + face[2] };
+      triangles->InsertNextCell(3, corners);
+    }
+  }
+  vtkNew<vtkPolyData> specks;
+  specks->SetPoints(points);
+  specks->SetPolys(triangles);
+  return specks;
+}
+
+// No collapse can shrink a tetrahedron: the simplified levels meet their quotas by removing
+// whole ones, and say so; their error covers what went.
+TEST(Builder, SpecksGoWholeAndAreCounted)
+{
+  const TemporaryPath model("specks.atp");
+  vtkNew<vtkATPBuilder> builder;
+  builder->SetInputData(Specks(12, 0.05));
+  builder->SetFileName(model.c_str());
+  builder->SetLeafCapacity(400);
+  ASSERT_EQ(builder->Build(), 1) << builder->GetErrorMessage();
+  const atp::ConstructionStats& c = builder->GetConstructionStats();
+  EXPECT_GT(c.PiecesRemoved, 1000u);
+  EXPECT_EQ(c.QuotaMisses, 0u) << "every level halves";
+  const atp::ModelFile file = atp::ModelFile::Open(model.Path);
+  std::uint64_t rootTriangles = 0;
+  for (std::size_t n = 0; n < file.NodeCount(); ++n)
+  {
+    const atp::ModelNode& node = file.Node(n);
+    if (node.Parent < 0)
+    {
+      rootTriangles += node.TriangleCount;
+      EXPECT_GE(node.SaturatedError, 0.05f * std::sqrt(3.f) / 2) << "root " << n;
+    }
+  }
+  EXPECT_LE(rootTriangles, 12u * 12u * 12u * 4u / 2u);
+}
+
 TEST(Builder, StreamsAFileToTheSameResult)
 {
   const TemporaryPath mesh("sheet.vtp"), fileModel("file.atp"), memoryModel("memory.atp");

@@ -122,6 +122,7 @@ TEST(PatchJob, ModelIsIdenticalWhenEveryJobTravelsAsBytes)
   EXPECT_EQ(travelled.Collapses, direct.Collapses);
   EXPECT_EQ(travelled.TrianglesOverQuotas, direct.TrianglesOverQuotas);
   EXPECT_EQ(travelled.QuotaMisses, direct.QuotaMisses);
+  EXPECT_EQ(travelled.PiecesRemoved, direct.PiecesRemoved);
   EXPECT_GT(runner.LeafJobs, 100u);
   EXPECT_GT(runner.DiamondJobs, 50u);
   const std::string reference = ReadBytes(threads);
@@ -159,19 +160,21 @@ TEST(PatchJob, MalformedMessagesAreRefused)
   atp::PatchJobResult made = atp::MakePatches(context, job);
   made.Collapses = 4321;
   made.TrianglesOverQuotas = 12345;
+  made.PiecesRemoved = 678;
   atp::EncodeResult(made, message);
   {
     atp::PatchJobResult back;
     atp::DecodeResult(message.data(), message.size(), back);
     EXPECT_EQ(back.Collapses, 4321u);
     EXPECT_EQ(back.TrianglesOverQuotas, 12345u);
+    EXPECT_EQ(back.PiecesRemoved, 678u);
   }
   // Decoding past a changed field would fail mid-build: a result's fields change only with
   // MessageVersion in atpPatchJobMessages.cxx (bump it, then this size).
   atp::PatchJobResult empty;
   std::vector<std::uint8_t> emptyMessage;
   atp::EncodeResult(empty, emptyMessage);
-  EXPECT_EQ(emptyMessage.size(), 32u);
+  EXPECT_EQ(emptyMessage.size(), 40u);
   ExpectOnlyTheWholeMessageDecodes(message, [](const std::vector<std::uint8_t>& m) {
     atp::PatchJobResult decoded;
     atp::DecodeResult(m.data(), m.size(), decoded);
