@@ -164,12 +164,13 @@ std::uint32_t StartRuns(Runs& runs)
   return start;
 }
 
-/// A closed piece of the mesh (a connected component with no locked vertex), which collapses
-/// cannot shrink below a tetrahedron: an isosurface's specks end as such, and at the coarsest
-/// levels they held most of the budget (579 tetrahedra, 2,316 of the brain's 3,271 triangles).
+/// A closed piece of the mesh (a connected component whose vertices are all Free: no open edge,
+/// no locked or non-manifold vertex), which collapses cannot take below a tetrahedron. An
+/// isosurface's specks end as such: the brain's coarsest diamond held 579 of them, 2,316
+/// triangles for a quota of 3,271.
 struct Piece
 {
-  double Radius2 = 0;         ///< squared distance from Center to its farthest vertex
+  double Radius2 = 0;         ///< half its box's diagonal, squared: no vertex is farther from Center
   double Center[3] = { 0, 0, 0 };
   std::uint32_t Start = 0;    ///< its triangles: PieceTriangles[Start, Start + Count)
   std::uint32_t Count = 0;
@@ -1492,7 +1493,8 @@ SimplifyResult Simplifier::Run()
   SimplifyResult result;
   result.Error = Deviation();
   result.Collapses = CollapseOrder.size() - Vanished;
-  result.PiecesRemoved = std::size_t(std::count_if(Pieces.begin(), Pieces.end(), [](const Piece& p) { return p.Removed; }));
+  result.PiecesRemoved =
+    std::size_t(std::count_if(Pieces.begin(), Pieces.end(), [](const Piece& p) { return p.Removed; }));
   result.TrianglesOverQuotas = std::uint64_t(Excess);
   std::vector<std::vector<std::uint32_t>> byRegion(static_cast<std::size_t>(RegionCount));
   for (std::uint32_t t = 0; t < TriangleCount; ++t)

@@ -48,7 +48,7 @@ struct SimplifyResult
   /// exactly, in double, against the output triangles around the vertex it collapsed into).
   /// Output vertices are input vertices, so this is the one-sided Hausdorff distance from the
   /// input's vertices to the output; callers add the children's errors on top. A removed piece's
-  /// vertices count as moved to the center of its box. 0 when nothing collapsed.
+  /// vertices count as moved to the center of its box. 0 when nothing collapsed or went.
   double Error = 0;
   std::size_t Collapses = 0;
   /// Closed pieces removed whole (see Simplify).
@@ -68,10 +68,12 @@ struct SimplifyResult
 /// breaks manifoldness (link condition). None turns a face more than about 80 degrees from the
 /// input normal of any of its corners unless a region cannot meet its quota otherwise, nor
 /// against it unless a region cannot meet its quota even then (at coarse levels, the input
-/// normals of the few vertices kept no longer describe the surface). Before either of these,
-/// when no legal collapse is left for the regions over their quotas, closed pieces (connected
-/// components with no locked vertex and no open edge, such as the tetrahedra an isosurface's
-/// specks end as) with a triangle in such a region are removed whole, smallest box first.
+/// normals of the few vertices kept no longer describe the surface). When no legal collapse is
+/// left for the regions over their quotas, closed pieces (connected components with no open
+/// edge and no vertex that may not move, such as the tetrahedra an isosurface's specks end as)
+/// with a triangle in such a region are removed whole, smallest box first: before the normals
+/// are relaxed, those whose box's half-diagonal is within the error made so far; once they are
+/// off, any.
 /// Deterministic and reentrant: concurrent calls on different meshes are safe. regionOf is
 /// not called when regionCount is 1.
 /// Triangles with a repeated corner are dropped from the input. Throws std::invalid_argument
