@@ -56,8 +56,8 @@ public:
   }
   /// Starts loading what appending the triangle to the bucket will read: the bucket's record
   /// and last-triangle entry, its last page's header and the lookup slots of the triangle's
-  /// corners. A caller that
-  /// knows its next appends overlaps their cache misses, which are most of an append's time.
+  /// corners. A caller that knows its next appends overlaps their cache misses, which are most
+  /// of an append's time.
   /// Only a hint: it changes nothing, and does nothing for a page that is not in memory.
   void Prefetch(BucketIndex bucket, const SoupTriangle& triangle) const;
   /// Appends the bucket's triangles to `out`, in insertion order.

@@ -359,6 +359,7 @@ private:
   std::vector<std::uint32_t> PieceTriangles;
   std::vector<std::uint32_t> PieceOf; // per vanished vertex: its piece
   std::size_t Vanished = 0;           // vertices removed with their pieces
+  std::size_t FirstLeft = 0;          // pieces before it are all removed: a scan starts there
   double Deviation2 = 0;              // Deviation() squared, measured after MeasuredCollapses
   std::size_t MeasuredCollapses = 0;
   /// Collapses that would also remove triangles of regions within their quotas wait here, and
@@ -1309,7 +1310,11 @@ bool Simplifier::RemoveSmallestPiece(bool anySize)
     Deviation2 = deviation * deviation;
     MeasuredCollapses = collapses;
   }
-  for (std::size_t i = 0; i < Pieces.size(); ++i)
+  while (FirstLeft < Pieces.size() && Pieces[FirstLeft].Removed)
+  {
+    ++FirstLeft;
+  }
+  for (std::size_t i = FirstLeft; i < Pieces.size(); ++i)
   {
     Piece& piece = Pieces[i];
     const std::uint32_t* first = PieceTriangles.data() + piece.Start;
