@@ -9,13 +9,12 @@ namespace atp
 {
 
 /// A point of triangle (a, b, c), Point = a + S (b - a) + T (c - a): its barycentric weights
-/// are 1 - S - T, S and T. Interior: inside the face, not on an edge or a corner.
+/// are 1 - S - T, S and T.
 struct TrianglePoint
 {
   double Point[3] = { 0, 0, 0 };
   double S = 0;
   double T = 0;
-  bool Interior = false;
 };
 
 /// The point of triangle (a, b, c) nearest to p.
@@ -31,7 +30,7 @@ inline TrianglePoint ClosestOnTriangle(const double p[3], const double a[3], con
     cp[i] = p[i] - c[i];
   }
   const auto dot = [](const double* u, const double* v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
-  const auto at = [&](double s, double t, bool interior) {
+  const auto at = [&](double s, double t) {
     TrianglePoint q;
     for (int i = 0; i < 3; ++i)
     {
@@ -39,7 +38,6 @@ inline TrianglePoint ClosestOnTriangle(const double p[3], const double a[3], con
     }
     q.S = s;
     q.T = t;
-    q.Interior = interior;
     return q;
   };
   const double d1 = dot(ab, ap), d2 = dot(ac, ap);
@@ -47,31 +45,31 @@ inline TrianglePoint ClosestOnTriangle(const double p[3], const double a[3], con
   const double va = d3 * d6 - d5 * d4, vb = d5 * d2 - d1 * d6, vc = d1 * d4 - d3 * d2;
   if (d1 <= 0 && d2 <= 0)
   {
-    return at(0, 0, false); // corner a
+    return at(0, 0); // corner a
   }
   if (d3 >= 0 && d4 <= d3)
   {
-    return at(1, 0, false); // corner b
+    return at(1, 0); // corner b
   }
   if (d6 >= 0 && d5 <= d6)
   {
-    return at(0, 1, false); // corner c
+    return at(0, 1); // corner c
   }
   if (vc <= 0 && d1 >= 0 && d3 <= 0)
   {
-    return at(d1 / (d1 - d3), 0, false); // edge ab
+    return at(d1 / (d1 - d3), 0); // edge ab
   }
   if (vb <= 0 && d2 >= 0 && d6 <= 0)
   {
-    return at(0, d2 / (d2 - d6), false); // edge ac
+    return at(0, d2 / (d2 - d6)); // edge ac
   }
   if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
   {
     const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return at(1 - w, w, false); // edge bc
+    return at(1 - w, w); // edge bc
   }
   const double denominator = va + vb + vc;
-  return at(vb / denominator, vc / denominator, true);
+  return at(vb / denominator, vc / denominator);
 }
 
 } // namespace atp

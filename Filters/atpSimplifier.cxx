@@ -23,26 +23,27 @@ constexpr std::uint32_t None = ~0u;
 constexpr double BoundaryPlaneWeight = 1;
 /// A collapse may not leave a triangle whose angle at the moved corner has a sine below 1e-6.
 constexpr double DegenerateSine2 = 1e-12;
-/// A moved triangle should face within about 80 degrees of each corner's input normal, not just
-/// under 90: a face almost edge-on to the normals it is shaded with is a fin standing off the
-/// surface. Measured on 16 chunks each of the brain and the 2M torus (atp-bench-simplify), this
-/// lowered the sampled Hausdorff distance by 4% and 1% (docs/construction.md, "Weighing
-/// normals"). Only a preference: fins are allowed once the regions over quota have no other
-/// collapse left.
+/// A moved triangle should face within about 80 degrees of the normal of the moved vertex's fan
+/// as it stands (the sum of its faces' cross products), not just under 90: a face almost edge-on
+/// to the surface it replaces is a fin standing off it. Measured on 16 chunks each of the brain
+/// and the 2M torus (atp-bench-simplify), a guard of this angle lowered the sampled Hausdorff
+/// distance by 4% and 1% (docs/construction.md, "Weighing normals"). Only a preference: fins are
+/// allowed once the regions over quota have no other collapse left.
 constexpr double FinCosine = 0.17;
 /// At most 3 normal components and 4 color channels.
 constexpr int MaxAttributes = 7;
 
-/// How a moved face must face its corners' input normals, strictest first (Run relaxes the
-/// guard one stage at a time, up to Off, the last).
+/// How a moved face must face the moved vertex's fan normal, strictest first (Run relaxes the
+/// guard one stage at a time, up to Off, the last). The fan as it stands rather than the input
+/// normals of the corners: at the coarse levels those no longer describe the few vertices kept,
+/// and held to them the guard forced detours of hundreds of times the usual cost there
+/// (docs/construction.md, "The facing guard: the fan, not the input normals").
 enum class FacingGuard : std::uint8_t
 {
-  NoFins, ///< within about 80 degrees of each (FinCosine)
+  NoFins, ///< within about 80 degrees of it (FinCosine)
   Fins,   ///< within 90 degrees: a fin standing off the surface is allowed
-  /// Not held to them: at the coarse levels the input normals of the few vertices kept no
-  /// longer describe the surface (on the brain they stopped all but 23 of the coarsest
-  /// diamond's 15,690 collapses needed), and a patch over its budget is the worse evil: it
-  /// costs every frame that draws it.
+  /// Not held to it: a patch over its budget is the worse evil, it costs every frame that draws
+  /// it.
   Off
 };
 
@@ -201,6 +202,9 @@ private:
   void BuildQuadricsWith();
   /// Drops u's removed corners from its run, and points Fan at it.
   void GatherFan(std::uint32_t u);
+  /// Adds the cross products of u's faces (twice their areas along their normals) to normal.
+  /// Fan must hold u's fan.
+  void FanNormal(std::uint32_t u, double normal[3]) const;
   bool CanCollapse(std::uint32_t u, std::uint32_t v);
   /// Queues u's cheapest collapse; only a legal one when checkLegal, otherwise legality is
   /// checked when it comes out of the queue (most evaluations are superseded before that).
@@ -331,7 +335,6 @@ private:
   double Origin[3] = { 0, 0, 0 };
   double Scale = 1; // bounding box diagonal: positions are normalized by it
   int Attributes = 0;
-  bool HasNormals = false;
   /// Per vertex, together since a price reads both: the normalized position, then the
   /// weighted attributes (PointSize doubles).
   std::size_t PointSize = 3;
@@ -366,7 +369,7 @@ private:
   /// are taken only when the over-quota regions have nothing else left (Relaxed).
   std::vector<std::uint32_t> Deferred;
   bool Relaxed = false;
-  /// How a moved face is held to its corners' input normals, relaxed a stage each time the
+  /// How a moved face is held to the moved vertex's fan normal, relaxed a stage each time the
   /// regions over quota have nothing else left.
   FacingGuard Facing = FacingGuard::NoFins;
 
@@ -431,8 +434,7 @@ Simplifier::Simplifier(const PatchMesh& mesh, int regionCount, const RegionFunct
     Scale = diagonal > 0 ? diagonal : 1;
     std::copy(lo, lo + 3, Origin);
   }
-  HasNormals = mesh.Normals.size() == 3 * VertexCount;
-  const bool normals = options.NormalWeight > 0 && HasNormals;
+  const bool normals = options.NormalWeight > 0 && mesh.Normals.size() == 3 * VertexCount;
   const bool colors = options.ColorWeight > 0 && mesh.Colors.size() == 4 * VertexCount;
   Attributes = (normals ? 3 : 0) + (colors ? 4 : 0);
   PointSize = 3 + std::size_t(Attributes);
@@ -774,11 +776,28 @@ void Simplifier::BuildQuadricsWith()
 // vanish), u and v do not share all their triangles (two triangles back to back would vanish,
 // leaving v none to measure its error against), the mesh is not a tetrahedron-like pocket (a
 // moved triangle would duplicate one of v), and no moved triangle flips or degenerates. Nor may a
-// moved triangle face within 10 degrees of edge-on to its corners' input normals (before the
-// regions over quota run out of other collapses) or against them (before they run out of those
-// too).
+// moved triangle face within 10 degrees of edge-on to u's fan normal (before the regions over
+// quota run out of other collapses) or against it (before they run out of those too).
 // Fan must hold u's fan. The geometric tests come first: they reject most candidates (flips and
 // normals, 4 in 10 on the brain) and need no walk around v.
+void Simplifier::FanNormal(std::uint32_t u, double normal[3]) const
+{
+  const double* pu = Position(u);
+  for (std::uint32_t c : Fan)
+  {
+    const std::uint32_t t = TriangleOf(c);
+    const int k = CornerSlot(c);
+    double a[3], b[3], n[3];
+    Sub(Position(Faces[t].V[NextCorner(k)]), pu, a);
+    Sub(Position(Faces[t].V[PrevCorner(k)]), pu, b);
+    Cross(a, b, n);
+    for (int i = 0; i < 3; ++i)
+    {
+      normal[i] += n[i];
+    }
+  }
+}
+
 bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
 {
   std::uint32_t opposite[2] = { None, None };
@@ -786,6 +805,12 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
   const double* pu = Position(u);
   const double* pv = Position(v);
   const double minFacing2 = Facing == FacingGuard::NoFins ? FinCosine * FinCosine : 0;
+  double fanNormal[3] = { 0, 0, 0 };
+  if (Facing != FacingGuard::Off)
+  {
+    FanNormal(u, fanNormal);
+  }
+  const double fanNormal2 = Dot(fanNormal, fanNormal);
   for (std::uint32_t c : Fan)
   {
     const std::uint32_t t = TriangleOf(c);
@@ -815,18 +840,14 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
     {
       return false;
     }
-    // Small turns, each allowed, add up to folds: the face must also agree with the input
-    // normals of its corners (which it keeps for shading).
-    if (HasNormals && Facing != FacingGuard::Off)
+    // Small turns, each allowed, add up to folds: the face must also agree with the surface
+    // around u.
+    if (Facing != FacingGuard::Off)
     {
-      for (std::uint32_t z : { v, x, y })
+      const double facing = Dot(after, fanNormal);
+      if (facing <= 0 || facing * facing <= minFacing2 * area2 * fanNormal2)
       {
-        const float* nz = &Mesh.Normals[3 * std::size_t(z)];
-        const double facing = after[0] * nz[0] + after[1] * nz[1] + after[2] * nz[2];
-        if (facing <= 0 || facing * facing <= minFacing2 * area2)
-        {
-          return false;
-        }
+        return false;
       }
     }
   }
@@ -1404,7 +1425,7 @@ SimplifyResult Simplifier::Run()
         continue;
       }
       // A closed piece within the error made so far goes before the guard relaxes: it costs no
-      // error, where a fin or a face against its normals shows and is not measured. Larger ones
+      // error, where a fin or a face against the surface shows and is not measured. Larger ones
       // go only when nothing else is left: their removal enters the error, so the cut refines
       // before it can show.
       if (RemoveSmallestPiece(Facing == FacingGuard::Off))
@@ -1415,8 +1436,8 @@ SimplifyResult Simplifier::Run()
       {
         break;
       }
-      // Still over quota with no legal collapse left: a fin, and then a face against its
-      // corners' normals, are lesser evils than a patch over its budget. Every vertex is priced
+      // Still over quota with no legal collapse left: a fin, and then a face against the
+      // surface it replaces, are lesser evils than a patch over its budget. Every vertex is priced
       // again with the guard relaxed.
       Facing = FacingGuard(int(Facing) + 1);
       for (std::uint32_t v = 0; v < VertexCount; ++v)
@@ -1516,20 +1537,19 @@ SimplifyResult Simplifier::Run()
   return result;
 }
 
-/// Squared distance from p to the triangle (a, b, c). inside: whether its nearest point is
-/// interior to the face.
-double DistanceToTriangle2(const double* p, const double* a, const double* b, const double* c, bool& inside)
+/// Squared distance from p to the triangle (a, b, c).
+double DistanceToTriangle2(const double* p, const double* a, const double* b, const double* c)
 {
   const TrianglePoint nearest = ClosestOnTriangle(p, a, b, c);
-  inside = nearest.Interior;
   double e[3];
   Sub(p, nearest.Point, e);
   return Dot(e, e);
 }
 
 // Each removed vertex is measured against the output triangles around the vertex it ended in,
-// then, unless its closest point is interior to a face, walks to a corner of its closest triangle
-// while that corner's fan comes closer. Any set of output triangles gives an upper bound of the
+// then walks to a corner of its closest triangle while that corner's fan comes closer. Not
+// stopping where the closest point is interior to a face: on a tilted face that is no nearest
+// point of the surface (on a bumpy grid, stopping there reported 4 times the distance). Any set of output triangles gives an upper bound of the
 // distance to the whole output surface; the walk makes it (nearly always) the exact distance.
 // Only the largest distance is wanted: a vertex is done as soon as one triangle lies within the
 // largest found so far (its own distance cannot exceed that), and the last collapses, the costly
@@ -1545,9 +1565,8 @@ double Simplifier::Deviation()
   };
   double p[3];
   double max2 = 0;
-  // The squared distance from p to the fan of v, its closest triangle and whether the closest
-  // point is interior to it; or, as soon as one triangle is within max2, that triangle's.
-  bool inside = false;
+  // The squared distance from p to the fan of v and its closest triangle; or, as soon as one
+  // triangle is within max2, that triangle's.
   const auto fanDistance2 = [&](std::uint32_t v, std::uint32_t& closest) {
     GatherFan(v);
     double nearest2 = 1e300;
@@ -1559,13 +1578,11 @@ double Simplifier::Deviation()
       {
         at(Faces[t].V[k], corners[k]);
       }
-      bool interior = false;
-      const double d2 = DistanceToTriangle2(p, corners[0], corners[1], corners[2], interior);
+      const double d2 = DistanceToTriangle2(p, corners[0], corners[1], corners[2]);
       if (d2 < nearest2)
       {
         nearest2 = d2;
         closest = t;
-        inside = interior;
       }
       if (d2 <= max2)
       {
@@ -1594,7 +1611,7 @@ double Simplifier::Deviation()
     }
     std::uint32_t closest = None;
     double nearest2 = fanDistance2(v, closest);
-    for (bool moved = closest != None; moved && nearest2 > max2 && !inside;)
+    for (bool moved = closest != None; moved && nearest2 > max2;)
     {
       moved = false;
       const std::uint32_t* tri = Faces[closest].V;

@@ -65,15 +65,14 @@ struct SimplifyResult
 /// and color. Vertices on diamond-external boundary edges (open edges whose BoundaryEdges bit is
 /// clear), on non-manifold edges or with a non-manifold fan never move; a vertex on the original
 /// boundary (bit set) only collapses along it. No collapse flips or degenerates a triangle or
-/// breaks manifoldness (link condition). None turns a face more than about 80 degrees from the
-/// input normal of any of its corners unless a region cannot meet its quota otherwise, nor
-/// against it unless a region cannot meet its quota even then (at coarse levels, the input
-/// normals of the few vertices kept no longer describe the surface). When no legal collapse is
-/// left for the regions over their quotas, closed pieces (connected components with no open
-/// edge and no vertex that may not move, such as the tetrahedra an isosurface's specks end as)
-/// with a triangle in such a region are removed whole, smallest box first: before the normals
-/// are relaxed, those whose box's half-diagonal is within the error made so far; once they are
-/// off, any.
+/// breaks manifoldness (link condition). None turns a moved face more than about 80 degrees from
+/// the normal of the moved vertex's fan (the sum of its faces' area vectors) unless a region
+/// cannot meet its quota otherwise, nor against it unless a region cannot meet its quota even
+/// then. When no legal collapse is left for the regions over their quotas, closed pieces
+/// (connected components with no open edge and no vertex that may not move, such as the
+/// tetrahedra an isosurface's specks end as) with a triangle in such a region are removed whole,
+/// smallest box first: before that guard relaxes, those whose box's half-diagonal is within the
+/// error made so far; once it is off, any.
 /// Deterministic and reentrant: concurrent calls on different meshes are safe. regionOf is
 /// not called when regionCount is 1.
 /// Triangles with a repeated corner are dropped from the input. Throws std::invalid_argument
