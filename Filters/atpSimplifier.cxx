@@ -770,16 +770,6 @@ void Simplifier::BuildQuadricsWith()
   }
 }
 
-// u -> v is legal when: the edge is manifold (1 or 2 triangles), the link condition holds (the
-// only common neighbors are the opposite corners), no edge from v to an opposite corner is
-// non-manifold, no triangle is removed with both other edges open (an isolated triangle would
-// vanish), u and v do not share all their triangles (two triangles back to back would vanish,
-// leaving v none to measure its error against), the mesh is not a tetrahedron-like pocket (a
-// moved triangle would duplicate one of v), and no moved triangle flips or degenerates. Nor may a
-// moved triangle face within 10 degrees of edge-on to u's fan normal (before the regions over
-// quota run out of other collapses) or against it (before they run out of those too).
-// Fan must hold u's fan. The geometric tests come first: they reject most candidates (flips and
-// normals, 4 in 10 on the brain) and need no walk around v.
 void Simplifier::FanNormal(std::uint32_t u, double normal[3]) const
 {
   const double* pu = Position(u);
@@ -798,6 +788,16 @@ void Simplifier::FanNormal(std::uint32_t u, double normal[3]) const
   }
 }
 
+// u -> v is legal when: the edge is manifold (1 or 2 triangles), the link condition holds (the
+// only common neighbors are the opposite corners), no edge from v to an opposite corner is
+// non-manifold, no triangle is removed with both other edges open (an isolated triangle would
+// vanish), u and v do not share all their triangles (two triangles back to back would vanish,
+// leaving v none to measure its error against), the mesh is not a tetrahedron-like pocket (a
+// moved triangle would duplicate one of v), and no moved triangle flips or degenerates. Nor may a
+// moved triangle face within 10 degrees of edge-on to u's fan normal (before the regions over
+// quota run out of other collapses) or against it (before they run out of those too).
+// Fan must hold u's fan. The geometric tests come first: they reject most candidates (flips and
+// facing, 4 in 10 on the brain) and need no walk around v.
 bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
 {
   std::uint32_t opposite[2] = { None, None };
@@ -1437,8 +1437,8 @@ SimplifyResult Simplifier::Run()
         break;
       }
       // Still over quota with no legal collapse left: a fin, and then a face against the
-      // surface it replaces, are lesser evils than a patch over its budget. Every vertex is priced
-      // again with the guard relaxed.
+      // surface it replaces, are lesser evils than a patch over its budget. Every vertex is
+      // priced again with the guard relaxed.
       Facing = FacingGuard(int(Facing) + 1);
       for (std::uint32_t v = 0; v < VertexCount; ++v)
       {
@@ -1549,12 +1549,12 @@ double DistanceToTriangle2(const double* p, const double* a, const double* b, co
 // Each removed vertex is measured against the output triangles around the vertex it ended in,
 // then walks to a corner of its closest triangle while that corner's fan comes closer. Not
 // stopping where the closest point is interior to a face: on a tilted face that is no nearest
-// point of the surface (on a bumpy grid, stopping there reported 4 times the distance). Any set of output triangles gives an upper bound of the
-// distance to the whole output surface; the walk makes it (nearly always) the exact distance.
-// Only the largest distance is wanted: a vertex is done as soon as one triangle lies within the
-// largest found so far (its own distance cannot exceed that), and the last collapses, the costly
-// ones, are measured first so that the bound is large early. The result is the same as measuring
-// every vertex in full.
+// point of the surface (on a bumpy grid, stopping there reported 4 times the distance). Any set
+// of output triangles gives an upper bound of the distance to the whole output surface; the walk
+// makes it (nearly always) the exact distance. Only the largest distance is wanted: a vertex is
+// done as soon as one triangle lies within the largest found so far (its own distance cannot
+// exceed that), and the last collapses, the costly ones, are measured first so that the bound is
+// large early. The result is the same as measuring every vertex in full.
 double Simplifier::Deviation()
 {
   const auto at = [&](std::uint32_t v, double* p) {
