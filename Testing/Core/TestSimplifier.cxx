@@ -765,15 +765,13 @@ double PointTriangleDistance(const double* p, const double* a, const double* b, 
   return std::min({ segment(a, b), segment(b, c), segment(c, a) });
 }
 
-TEST(Simplifier, ErrorIsTheLargestVertexDistanceToTheOutput)
+/// The largest distance from a vertex of `in` to the triangles of `out`, by brute force.
+double LargestDistance(const PatchMesh& in, const PatchMesh& out)
 {
-  const PatchMesh mesh = BumpyTorus(60, 30);
-  const SimplifyResult result = Simplify(mesh, 1, OneRegion(), { 600 });
-  const PatchMesh out = Joined(result);
   double largest = 0;
-  for (std::size_t v = 0; v < mesh.VertexCount(); ++v)
+  for (std::size_t v = 0; v < in.VertexCount(); ++v)
   {
-    const double p[3] = { mesh.Positions[3 * v], mesh.Positions[3 * v + 1], mesh.Positions[3 * v + 2] };
+    const double p[3] = { in.Positions[3 * v], in.Positions[3 * v + 1], in.Positions[3 * v + 2] };
     double nearest = 1e300;
     for (std::size_t t = 0; t < out.TriangleCount(); ++t)
     {
@@ -789,9 +787,25 @@ TEST(Simplifier, ErrorIsTheLargestVertexDistanceToTheOutput)
     }
     largest = std::max(largest, nearest);
   }
-  EXPECT_GT(largest, 0);
-  EXPECT_GE(result.Error, largest * (1 - 1e-9)) << "an upper bound";
-  EXPECT_LE(result.Error, largest * 1.5) << "and a tight one";
+  return largest;
+}
+
+// The reported error bounds the true one and is tight. On the bumpy grid, a walk that stopped
+// where a removed vertex's closest point is interior to a face (on a tilted face, no nearest
+// point of the surface) reported 0.0126 for a true 0.0033 at 800 triangles.
+TEST(Simplifier, ErrorIsTheLargestVertexDistanceToTheOutput)
+{
+  const PatchMesh torus = BumpyTorus(60, 30);
+  const PatchMesh grid = Grid(50, Bumps, true);
+  const std::pair<const PatchMesh*, std::uint32_t> cases[] = { { &torus, 600 }, { &grid, 800 }, { &grid, 300 } };
+  for (const auto& [mesh, quota] : cases)
+  {
+    const SimplifyResult result = Simplify(*mesh, 1, OneRegion(), { quota });
+    const double largest = LargestDistance(*mesh, Joined(result));
+    EXPECT_GT(largest, 0);
+    EXPECT_GE(result.Error, largest * (1 - 1e-9)) << "an upper bound, quota " << quota;
+    EXPECT_LE(result.Error, largest * 1.01) << "and a tight one, quota " << quota;
+  }
 }
 
 TEST(Simplifier, PlanarGridHasNoError)
