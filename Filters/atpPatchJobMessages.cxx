@@ -11,7 +11,8 @@ namespace
 
 /// The messages' version: one more whenever a message gains, loses or widens a field (the
 /// sizes of the shipped types count themselves). 1: the first; 2: a result carries the
-/// triangles over its quotas instead of a flag. TestPatchJob pins a result message's size.
+/// triangles over its quotas instead of a flag; 3: and the closed pieces removed. TestPatchJob
+/// pins a result message's size.
 constexpr std::uint64_t MessageVersion = 3;
 
 static_assert(MessageVersion < 256 && sizeof(SoupTriangle) < 256 && sizeof(Tetra) < 256 &&
