@@ -239,6 +239,15 @@ int Build(int argc, char** argv, atp::MpiJobRunner* workers)
     FormatCount(double(c.TrianglesOverQuotas)).c_str(),
     static_cast<unsigned long long>(c.SimplifiedPatchesOverBudget), c.CoarsestError,
     builder->GetConstructionSeconds());
+  // Where the CPU went: the jobs' steps wherever they ran, the rest on the calling thread.
+  const atp::ConstructionCpuSeconds& cpu = c.Cpu;
+  std::printf("cpu: partition %.2fs, construction %.2fs in this process; jobs: leaves %.2fs (weld "
+              "%.2fs, encode %.2fs), diamonds %.2fs (merge %.2fs, simplify %.2fs, encode %.2fs); "
+              "loading jobs %.2fs, storing results %.2fs, writing the model %.2fs\n",
+    builder->GetPartitionCpuSeconds(), builder->GetConstructionCpuSeconds(),
+    cpu.LeafWeld + cpu.LeafEncode, cpu.LeafWeld, cpu.LeafEncode,
+    cpu.Merge + cpu.Simplify + cpu.Encode, cpu.Merge, cpu.Simplify, cpu.Encode, cpu.LoadJobs,
+    cpu.StoreResults, cpu.WriteModel);
   std::printf("scratch: peak %.1f MiB of patches\n", double(c.PeakScratchBytes) / (1 << 20));
   if (workers)
   {

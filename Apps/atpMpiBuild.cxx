@@ -1,5 +1,6 @@
 #include "atpMpiBuild.h"
 
+#include "atpCpuTime.h"
 #include "atpPatchJobMessages.h"
 
 #include <chrono>
@@ -7,7 +8,6 @@
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
-#include <ctime>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -91,13 +91,6 @@ void Receive(MPI_Comm comm, const MPI_Status& status, std::vector<std::uint8_t>&
   Check(MPI_Recv(bytes.data(), count, MPI_BYTE, status.MPI_SOURCE, status.MPI_TAG, comm,
           MPI_STATUS_IGNORE),
     "receive");
-}
-
-double ProcessCpuSeconds()
-{
-  timespec now{};
-  ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
-  return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
 }
 
 std::uint64_t PeakResidentBytes()

@@ -1,6 +1,7 @@
 #include "atpConstruction.h"
 
 #include "atpBounds.h"
+#include "atpCpuTime.h"
 #include "atpModelFormat.h"
 #include "atpModelWriter.h"
 #include "atpPatchJobRunner.h"
@@ -140,7 +141,9 @@ public:
       Stats.CoarsestError = std::max(Stats.CoarsestError, Below[i].SaturatedError);
     }
     Spill(0, Below);
+    ThreadCpuLap time;
     Write(outputPath);
+    time.Lap(Stats.Cpu.WriteModel);
     return Stats;
   }
 
@@ -276,13 +279,19 @@ private:
     Runner.Run(
       leaves.size(),
       [&](std::size_t i, PatchJob& job) {
+        ThreadCpuLap time;
         Partition.ReadLeaf(leaves[i], job.Soup);
         Partition.ReleaseLeaf(leaves[i]);
+        time.Lap(Stats.Cpu.LoadJobs);
       },
       [&](std::size_t i, PatchJobResult& made) {
+        ThreadCpuLap time;
         Store(leaves[i], made.Patches[0], haveParents);
         Result(leaves[i]).Cone = made.Patches[0].Cone;
+        Stats.Cpu.LeafWeld += made.Cpu.Prepare;
+        Stats.Cpu.LeafEncode += made.Cpu.Encode;
         ReportProgress(1);
+        time.Lap(Stats.Cpu.StoreResults);
       });
   }
 
@@ -342,10 +351,19 @@ private:
     const DiamondGroups diamonds = GroupByDiamond(inner);
     Runner.Run(
       diamonds.size(),
-      [&](std::size_t i, PatchJob& job) { LoadDiamond(diamonds[i], job); },
+      [&](std::size_t i, PatchJob& job) {
+        ThreadCpuLap time;
+        LoadDiamond(diamonds[i], job);
+        time.Lap(Stats.Cpu.LoadJobs);
+      },
       [&](std::size_t i, PatchJobResult& made) {
+        ThreadCpuLap time;
         SaturateDiamond(diamonds[i], made, haveParents);
+        Stats.Cpu.Merge += made.Cpu.Prepare;
+        Stats.Cpu.Simplify += made.Cpu.Simplify;
+        Stats.Cpu.Encode += made.Cpu.Encode;
         ReportProgress(diamonds[i].size());
+        time.Lap(Stats.Cpu.StoreResults);
       });
   }
 

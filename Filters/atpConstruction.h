@@ -29,6 +29,20 @@ struct ConstructionOptions
   float ErrorScale = 1;
 };
 
+/// CPU seconds by step of construction. The jobs' steps are summed over every job, wherever it
+/// ran (threads of this process or MPI workers); the others run on the calling thread.
+struct ConstructionCpuSeconds
+{
+  double LeafWeld = 0;     ///< leaves: buckets welded into indexed patches
+  double LeafEncode = 0;   ///< leaves: encoding, with spheres and cones
+  double Merge = 0;        ///< diamonds: their children's patches merged
+  double Simplify = 0;     ///< diamonds
+  double Encode = 0;       ///< diamonds: encoding, with spheres and cones
+  double LoadJobs = 0;     ///< reading the jobs' buckets and waiting patches
+  double StoreResults = 0; ///< storing the patches in scratch files, saturating bounds
+  double WriteModel = 0;   ///< the model file, from the scratch files
+};
+
 struct ConstructionStats
 {
   std::uint64_t Nodes = 0;
@@ -50,6 +64,7 @@ struct ConstructionStats
   std::uint64_t PeakScratchBytes = 0;  ///< intermediate patches and encoded patches on disk
   double CoarsestError = 0;            ///< saturated object-space error of the roots
   int Depth = 0;
+  ConstructionCpuSeconds Cpu;
 };
 
 /// Called with the fraction done; it may throw to cancel (nothing is written then).

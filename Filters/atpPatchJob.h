@@ -59,6 +59,14 @@ struct MadePatch
 };
 
 /// One patch per member (a leaf: one), and the diamond's figures.
+/// CPU seconds a job spent in each of its steps, on the thread that ran it.
+struct JobCpuSeconds
+{
+  double Prepare = 0;  ///< welding a leaf's bucket, or merging a diamond's children
+  double Simplify = 0; ///< a diamond's simplification (0 for a leaf)
+  double Encode = 0;   ///< encoding the patches, with their spheres and cones
+};
+
 struct PatchJobResult
 {
   std::vector<MadePatch> Patches;
@@ -67,6 +75,7 @@ struct PatchJobResult
   /// Triangles above the diamond's quotas (QuotasOf): see SimplifyResult.
   std::uint64_t TrianglesOverQuotas = 0;
   std::uint64_t PiecesRemoved = 0; ///< closed pieces removed whole: see Simplify
+  JobCpuSeconds Cpu;
 };
 
 /// What a diamond job's simplification keeps: each member at most the budget, and the members

@@ -11,9 +11,9 @@ namespace
 
 /// The messages' version: one more whenever a message gains, loses or widens a field (the
 /// sizes of the shipped types count themselves). 1: the first; 2: a result carries the
-/// triangles over its quotas instead of a flag; 3: and the closed pieces removed. TestPatchJob
-/// pins a result message's size.
-constexpr std::uint64_t MessageVersion = 3;
+/// triangles over its quotas instead of a flag; 3: and the closed pieces removed; 4: and the
+/// CPU time of its steps. TestPatchJob pins a result message's size.
+constexpr std::uint64_t MessageVersion = 4;
 
 static_assert(MessageVersion < 256 && sizeof(SoupTriangle) < 256 && sizeof(Tetra) < 256 &&
     sizeof(Sphere) < 256 && sizeof(NormalCone) < 256,
@@ -229,6 +229,7 @@ void EncodeResult(const PatchJobResult& result, std::vector<std::uint8_t>& out)
   w.Put(result.Collapses);
   w.Put(result.TrianglesOverQuotas);
   w.Put(result.PiecesRemoved);
+  w.Put(result.Cpu);
 }
 
 void DecodeResult(const std::uint8_t* data, std::size_t bytes, PatchJobResult& out)
@@ -246,6 +247,7 @@ void DecodeResult(const std::uint8_t* data, std::size_t bytes, PatchJobResult& o
   out.Collapses = r.Get<std::uint64_t>();
   out.TrianglesOverQuotas = r.Get<std::uint64_t>();
   out.PiecesRemoved = r.Get<std::uint64_t>();
+  out.Cpu = r.Get<JobCpuSeconds>();
   r.ExpectEnd();
 }
 

@@ -1,6 +1,7 @@
 #include "vtkATPBuilder.h"
 
 #include "atpConstruction.h"
+#include "atpCpuTime.h"
 #include "atpStreamPartition.h"
 #include "atpTriangleSource.h"
 #include "atpPolyDataTriangleSource.h"
@@ -30,6 +31,8 @@ struct vtkATPBuilder::Results
   bool FromVolume = false;
   double PartitionSeconds = 0;
   double ConstructionSeconds = 0;
+  double PartitionCpuSeconds = 0;
+  double ConstructionCpuSeconds = 0;
 };
 
 namespace
@@ -119,6 +122,7 @@ int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, v
   try
   {
     auto phaseStart = std::chrono::steady_clock::now(); // opening reads the input once
+    double phaseCpuStart = atp::ProcessCpuSeconds();
     std::unique_ptr<atp::TriangleSource> source = this->OpenSource(inputs);
     atp::PartitionOptions options;
     options.LeafCapacity = std::uint32_t(this->LeafCapacity);
@@ -142,7 +146,9 @@ int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, v
     this->Last->Input = source->Stats();
     this->Last->Partition = partitioner->Stats();
     this->Last->PartitionSeconds = SecondsSince(phaseStart);
+    this->Last->PartitionCpuSeconds = atp::ProcessCpuSeconds() - phaseCpuStart;
     phaseStart = std::chrono::steady_clock::now();
+    phaseCpuStart = atp::ProcessCpuSeconds();
     const atp::Box bounds = source->Bounds();
     source.reset(); // its scratch arrays (vertices, sketch) are no longer needed
 
@@ -158,6 +164,7 @@ int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, v
         this->ThrowIfAborted();
       });
     this->Last->ConstructionSeconds = SecondsSince(phaseStart);
+    this->Last->ConstructionCpuSeconds = atp::ProcessCpuSeconds() - phaseCpuStart;
     this->UpdateProgress(1);
   }
   catch (const std::exception& e)
@@ -193,6 +200,16 @@ double vtkATPBuilder::GetPartitionSeconds() const
 double vtkATPBuilder::GetConstructionSeconds() const
 {
   return this->Last->ConstructionSeconds;
+}
+
+double vtkATPBuilder::GetPartitionCpuSeconds() const
+{
+  return this->Last->PartitionCpuSeconds;
+}
+
+double vtkATPBuilder::GetConstructionCpuSeconds() const
+{
+  return this->Last->ConstructionCpuSeconds;
 }
 
 std::unique_ptr<atp::TriangleSource> vtkATPBuilder::OpenSource(vtkInformationVector** inputs)

@@ -134,6 +134,10 @@ public:
   /// Wall-clock seconds of the partitioning phase (reading included) and of construction.
   double GetPartitionSeconds() const;
   double GetConstructionSeconds() const;
+  /// CPU seconds of this process, all threads together, in each phase (construction's steps:
+  /// GetConstructionStats().Cpu).
+  double GetPartitionCpuSeconds() const;
+  double GetConstructionCpuSeconds() const;
   ///@}
 
 protected:

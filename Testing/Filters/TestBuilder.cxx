@@ -1,6 +1,7 @@
 // vtkATPBuilder as a VTK user drives it: polydata or file input, properties, progress events,
 // errors reported (not thrown), PrintSelf.
 #include "atpConstruction.h"
+#include "atpCpuTime.h"
 #include "atpCutIndex.h"
 #include "atpModelFile.h"
 #include "atpPartitioner.h"
@@ -23,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <sstream>
 #include <unistd.h>
 
@@ -119,6 +121,39 @@ TEST(Builder, PartitionsPolyDataInputWithProgress)
   log.Values.clear();
   ASSERT_EQ(builder->Build(), 1);
   EXPECT_FALSE(log.Values.empty());
+}
+
+// The build reports where its CPU went: every step of construction took some, the steps add up
+// to nearly all of what the process used while constructing and never to more, and the phases
+// to no more than the whole build.
+TEST(Builder, ReportsWhereItsCpuWent)
+{
+  const TemporaryPath model("cpu.atp");
+  vtkNew<vtkATPBuilder> builder;
+  builder->SetInputData(WavySheet(250));
+  builder->SetFileName(model.c_str());
+  builder->SetNumberOfThreads(2);
+  const double start = atp::ProcessCpuSeconds();
+  ASSERT_EQ(builder->Build(), 1) << builder->GetErrorMessage();
+  const double build = atp::ProcessCpuSeconds() - start;
+
+  const double partition = builder->GetPartitionCpuSeconds();
+  const double construction = builder->GetConstructionCpuSeconds();
+  EXPECT_GT(partition, 0);
+  EXPECT_GT(construction, 0);
+  EXPECT_LE(partition + construction, build);
+  const atp::ConstructionCpuSeconds& cpu = builder->GetConstructionStats().Cpu;
+  const double steps[] = { cpu.LeafWeld, cpu.LeafEncode, cpu.Merge, cpu.Simplify, cpu.Encode,
+    cpu.LoadJobs, cpu.StoreResults, cpu.WriteModel };
+  double sum = 0;
+  for (std::size_t i = 0; i < std::size(steps); ++i)
+  {
+    EXPECT_GT(steps[i], 0) << "step " << i;
+    sum += steps[i];
+  }
+  EXPECT_LE(sum, construction);
+  EXPECT_GE(sum, 0.8 * construction);
+  EXPECT_GT(cpu.Simplify, cpu.Merge); // the simplifier is the costly step
 }
 
 // The build's figures on quotas and the budget agree with the model it wrote, recomputed from

@@ -123,6 +123,8 @@ TEST(PatchJob, ModelIsIdenticalWhenEveryJobTravelsAsBytes)
   EXPECT_EQ(travelled.TrianglesOverQuotas, direct.TrianglesOverQuotas);
   EXPECT_EQ(travelled.QuotaMisses, direct.QuotaMisses);
   EXPECT_EQ(travelled.PiecesRemoved, direct.PiecesRemoved);
+  EXPECT_GT(travelled.Cpu.Simplify, 0); // the jobs' CPU times travel too (their values differ)
+  EXPECT_GT(travelled.Cpu.LeafEncode, 0);
   EXPECT_GT(runner.LeafJobs, 100u);
   EXPECT_GT(runner.DiamondJobs, 50u);
   const std::string reference = ReadBytes(threads);
@@ -161,6 +163,7 @@ TEST(PatchJob, MalformedMessagesAreRefused)
   made.Collapses = 4321;
   made.TrianglesOverQuotas = 12345;
   made.PiecesRemoved = 678;
+  made.Cpu = { 0.25, 1.5, 0.75 };
   atp::EncodeResult(made, message);
   {
     atp::PatchJobResult back;
@@ -168,13 +171,16 @@ TEST(PatchJob, MalformedMessagesAreRefused)
     EXPECT_EQ(back.Collapses, 4321u);
     EXPECT_EQ(back.TrianglesOverQuotas, 12345u);
     EXPECT_EQ(back.PiecesRemoved, 678u);
+    EXPECT_EQ(back.Cpu.Prepare, 0.25);
+    EXPECT_EQ(back.Cpu.Simplify, 1.5);
+    EXPECT_EQ(back.Cpu.Encode, 0.75);
   }
   // Decoding past a changed field would fail mid-build: a result's fields change only with
   // MessageVersion in atpPatchJobMessages.cxx (bump it, then this size).
   atp::PatchJobResult empty;
   std::vector<std::uint8_t> emptyMessage;
   atp::EncodeResult(empty, emptyMessage);
-  EXPECT_EQ(emptyMessage.size(), 40u);
+  EXPECT_EQ(emptyMessage.size(), 64u);
   ExpectOnlyTheWholeMessageDecodes(message, [](const std::vector<std::uint8_t>& m) {
     atp::PatchJobResult decoded;
     atp::DecodeResult(m.data(), m.size(), decoded);
