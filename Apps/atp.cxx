@@ -246,8 +246,8 @@ int Build(int argc, char** argv, atp::MpiJobRunner* workers)
               "loading jobs %.2fs, storing results %.2fs, writing the model %.2fs\n",
     builder->GetPartitionCpuSeconds(), builder->GetConstructionCpuSeconds(),
     cpu.LeafWeld + cpu.LeafEncode, cpu.LeafWeld, cpu.LeafEncode,
-    cpu.Merge + cpu.Simplify + cpu.Encode, cpu.Merge, cpu.Simplify, cpu.Encode, cpu.LoadJobs,
-    cpu.StoreResults, cpu.WriteModel);
+    cpu.DiamondMerge + cpu.DiamondSimplify + cpu.DiamondEncode, cpu.DiamondMerge,
+    cpu.DiamondSimplify, cpu.DiamondEncode, cpu.LoadJobs, cpu.StoreResults, cpu.WriteModel);
   std::printf("scratch: peak %.1f MiB of patches\n", double(c.PeakScratchBytes) / (1 << 20));
   if (workers)
   {

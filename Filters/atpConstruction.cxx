@@ -141,9 +141,9 @@ public:
       Stats.CoarsestError = std::max(Stats.CoarsestError, Below[i].SaturatedError);
     }
     Spill(0, Below);
-    ThreadCpuLap time;
+    ThreadCpuLap lap;
     Write(outputPath);
-    time.Lap(Stats.Cpu.WriteModel);
+    lap.Lap(Stats.Cpu.WriteModel);
     return Stats;
   }
 
@@ -279,19 +279,19 @@ private:
     Runner.Run(
       leaves.size(),
       [&](std::size_t i, PatchJob& job) {
-        ThreadCpuLap time;
+        ThreadCpuLap lap;
         Partition.ReadLeaf(leaves[i], job.Soup);
         Partition.ReleaseLeaf(leaves[i]);
-        time.Lap(Stats.Cpu.LoadJobs);
+        lap.Lap(Stats.Cpu.LoadJobs);
       },
       [&](std::size_t i, PatchJobResult& made) {
-        ThreadCpuLap time;
+        ThreadCpuLap lap;
         Store(leaves[i], made.Patches[0], haveParents);
         Result(leaves[i]).Cone = made.Patches[0].Cone;
         Stats.Cpu.LeafWeld += made.Cpu.Prepare;
         Stats.Cpu.LeafEncode += made.Cpu.Encode;
         ReportProgress(1);
-        time.Lap(Stats.Cpu.StoreResults);
+        lap.Lap(Stats.Cpu.StoreResults);
       });
   }
 
@@ -352,18 +352,18 @@ private:
     Runner.Run(
       diamonds.size(),
       [&](std::size_t i, PatchJob& job) {
-        ThreadCpuLap time;
+        ThreadCpuLap lap;
         LoadDiamond(diamonds[i], job);
-        time.Lap(Stats.Cpu.LoadJobs);
+        lap.Lap(Stats.Cpu.LoadJobs);
       },
       [&](std::size_t i, PatchJobResult& made) {
-        ThreadCpuLap time;
+        ThreadCpuLap lap;
         SaturateDiamond(diamonds[i], made, haveParents);
-        Stats.Cpu.Merge += made.Cpu.Prepare;
-        Stats.Cpu.Simplify += made.Cpu.Simplify;
-        Stats.Cpu.Encode += made.Cpu.Encode;
+        Stats.Cpu.DiamondMerge += made.Cpu.Prepare;
+        Stats.Cpu.DiamondSimplify += made.Cpu.Simplify;
+        Stats.Cpu.DiamondEncode += made.Cpu.Encode;
         ReportProgress(diamonds[i].size());
-        time.Lap(Stats.Cpu.StoreResults);
+        lap.Lap(Stats.Cpu.StoreResults);
       });
   }
 

@@ -33,14 +33,15 @@ struct ConstructionOptions
 /// ran (threads of this process or MPI workers); the others run on the calling thread.
 struct ConstructionCpuSeconds
 {
-  double LeafWeld = 0;     ///< leaves: buckets welded into indexed patches
-  double LeafEncode = 0;   ///< leaves: encoding, with spheres and cones
-  double Merge = 0;        ///< diamonds: their children's patches merged
-  double Simplify = 0;     ///< diamonds
-  double Encode = 0;       ///< diamonds: encoding, with spheres and cones
-  double LoadJobs = 0;     ///< reading the jobs' buckets and waiting patches
-  double StoreResults = 0; ///< storing the patches in scratch files, saturating bounds
-  double WriteModel = 0;   ///< the model file, from the scratch files
+  double LeafWeld = 0;        ///< buckets welded into indexed patches
+  double LeafEncode = 0;      ///< leaves encoded, with their spheres and cones
+  double DiamondMerge = 0;    ///< the children's patches merged
+  double DiamondSimplify = 0;
+  double DiamondEncode = 0;   ///< simplified patches encoded, with their spheres and cones
+  double LoadJobs = 0;        ///< reading the jobs' buckets and waiting patches
+  /// Storing the patches in scratch files, saturating bounds, reporting progress.
+  double StoreResults = 0;
+  double WriteModel = 0;      ///< the model file, from the scratch files
 };
 
 struct ConstructionStats

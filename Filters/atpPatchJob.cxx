@@ -71,13 +71,13 @@ PatchMesh WeldSoup(const std::vector<SoupTriangle>& soup, bool colors)
 /// Leaves keep the input at full resolution: their bucket, welded into an indexed patch.
 PatchJobResult MakeLeafPatch(const PatchJobContext& context, const PatchJob& job)
 {
-  ThreadCpuLap time;
+  ThreadCpuLap lap;
   PatchJobResult result;
   result.Patches.resize(1);
   result.Patches[0].Mesh = WeldSoup(job.Soup, context.Colors);
-  time.Lap(result.Cpu.Prepare);
+  lap.Lap(result.Cpu.Prepare);
   Finish(result.Patches[0], context.Grid, PrecisionFor(context.Grid, 0));
-  time.Lap(result.Cpu.Encode);
+  lap.Lap(result.Cpu.Encode);
   return result;
 }
 
@@ -85,7 +85,7 @@ PatchJobResult MakeLeafPatch(const PatchJobContext& context, const PatchJob& job
 /// locked, one region per member, to the diamond's quotas (QuotasOf).
 PatchJobResult SimplifyDiamond(const PatchJobContext& context, PatchJob& job)
 {
-  ThreadCpuLap time;
+  ThreadCpuLap lap;
   JobCpuSeconds cpu;
   std::vector<const PatchMesh*> parts;
   for (const PatchMesh& c : job.Children)
@@ -97,12 +97,12 @@ PatchJobResult SimplifyDiamond(const PatchJobContext& context, PatchJob& job)
   options.TotalQuota = quotas.Total;
   const PatchMesh merged = MergePatches(parts);
   job.Children.clear(); // one copy of the diamond in memory while it simplifies
-  time.Lap(cpu.Prepare);
+  lap.Lap(cpu.Prepare);
   const MemberLocator locator(job.Members, context.Frame);
   SimplifyResult simplified = Simplify(merged, int(job.Members.size()),
     [&locator](const double p[3], int likely) { return locator.MemberOf(p, likely); }, quotas.Members,
     options);
-  time.Lap(cpu.Simplify);
+  lap.Lap(cpu.Simplify);
   // The merged input was already off the original by up to its children's error; storing
   // the interior on a coarser grid adds its rounding.
   const PatchPrecision precision = PrecisionFor(context.Grid, simplified.Error + job.ChildError);
@@ -117,7 +117,7 @@ PatchJobResult SimplifyDiamond(const PatchJobContext& context, PatchJob& job)
     result.Patches[i].Mesh = std::move(simplified.Regions[i]);
     Finish(result.Patches[i], context.Grid, precision);
   }
-  time.Lap(cpu.Encode);
+  lap.Lap(cpu.Encode);
   result.Cpu = cpu;
   return result;
 }

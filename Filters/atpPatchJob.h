@@ -58,7 +58,6 @@ struct MadePatch
   NormalCone Cone;
 };
 
-/// One patch per member (a leaf: one), and the diamond's figures.
 /// CPU seconds a job spent in each of its steps, on the thread that ran it.
 struct JobCpuSeconds
 {
@@ -67,6 +66,7 @@ struct JobCpuSeconds
   double Encode = 0;   ///< encoding the patches, with their spheres and cones
 };
 
+/// One patch per member (a leaf: one), and the diamond's figures.
 struct PatchJobResult
 {
   std::vector<MadePatch> Patches;

@@ -14,6 +14,8 @@ namespace
 /// triangles over its quotas instead of a flag; 3: and the closed pieces removed; 4: and the
 /// CPU time of its steps. TestPatchJob pins a result message's size.
 constexpr std::uint64_t MessageVersion = 4;
+static_assert(sizeof(JobCpuSeconds) == 3 * sizeof(double),
+  "a step added to JobCpuSeconds changes the result message: bump MessageVersion");
 
 static_assert(MessageVersion < 256 && sizeof(SoupTriangle) < 256 && sizeof(Tetra) < 256 &&
     sizeof(Sphere) < 256 && sizeof(NormalCone) < 256,

@@ -211,10 +211,12 @@ private:
   /// checked when it comes out of the queue (most evaluations are superseded before that).
   void Evaluate(std::uint32_t u, bool checkLegal)
   {
-    Quadric::WithAttributeCount(Attributes, [&](auto fixed) { EvaluateWith<decltype(fixed)::value>(u, checkLegal); });
+    Quadric::WithAttributeCount(
+      Attributes, [&](auto fixed) { EvaluateWith<decltype(fixed)::value>(u, checkLegal); });
   }
-  /// Evaluate with the attribute count Fixed as a constant: it prices every neighbor of u,
-  /// and a dispatch per price measured 0.9% of a build's instructions.
+  /// Evaluate with the attribute count Fixed as a constant: it prices every neighbor of u, and
+  /// dispatching once per vertex instead of once per price saved 0.76% of a build's
+  /// instructions.
   template <int Fixed>
   void EvaluateWith(std::uint32_t u, bool checkLegal);
   /// After a neighbor of x collapsed onto v: x's queued collapse keeps its cost (x's quadric and

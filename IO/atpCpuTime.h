@@ -8,29 +8,29 @@
 namespace atp
 {
 
-namespace CpuTime
+namespace detail
 {
 
-inline double Seconds(clockid_t clock)
+inline double ClockSeconds(clockid_t clock)
 {
   timespec now{};
   ::clock_gettime(clock, &now);
   return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
 }
 
-} // namespace CpuTime
+} // namespace detail
 
 /// CPU seconds the calling thread has used: a step timed with it on a worker thread is not
 /// charged for the time other threads ran meanwhile.
 inline double ThreadCpuSeconds()
 {
-  return CpuTime::Seconds(CLOCK_THREAD_CPUTIME_ID);
+  return detail::ClockSeconds(CLOCK_THREAD_CPUTIME_ID);
 }
 
 /// CPU seconds the process has used, all threads together.
 inline double ProcessCpuSeconds()
 {
-  return CpuTime::Seconds(CLOCK_PROCESS_CPUTIME_ID);
+  return detail::ClockSeconds(CLOCK_PROCESS_CPUTIME_ID);
 }
 
 /// Adds the calling thread's CPU time between laps to counters: `Lap(total)` adds the time

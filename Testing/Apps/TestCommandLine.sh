@@ -21,6 +21,7 @@ expect 2 "expected 1 argument" -- "$atp" build -o "$work/x.atp"
 expect 0 "done: .* triangles/s, peak memory" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/x.atp" --quiet
 expect 0 "partition: [0-9]+ leaves" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/x.atp" --leaf-capacity 500 --bucket-memory 1
 [ -s "$work/x.atp" ] || { echo "FAIL: atp build wrote no model"; failures=$((failures + 1)); }
+expect 0 "cpu: partition [0-9.]+s, construction [0-9.]+s in this process; jobs: leaves [0-9.]+s" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/x.atp" --quiet
 expect 0 "simplify: [0-9]+ diamonds" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/y.atp" --threads 1 --patch-budget 1000
 expect 0 "model: [0-9]+ nodes, [0-9]+ levels" -- "$atp" info "$work/x.atp"
 expect 0 '"bytes_per_input_triangle"' -- "$atp" info --json "$work/x.atp"

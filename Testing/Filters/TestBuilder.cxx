@@ -143,8 +143,8 @@ TEST(Builder, ReportsWhereItsCpuWent)
   EXPECT_GT(construction, 0);
   EXPECT_LE(partition + construction, build);
   const atp::ConstructionCpuSeconds& cpu = builder->GetConstructionStats().Cpu;
-  const double steps[] = { cpu.LeafWeld, cpu.LeafEncode, cpu.Merge, cpu.Simplify, cpu.Encode,
-    cpu.LoadJobs, cpu.StoreResults, cpu.WriteModel };
+  const double steps[] = { cpu.LeafWeld, cpu.LeafEncode, cpu.DiamondMerge, cpu.DiamondSimplify,
+    cpu.DiamondEncode, cpu.LoadJobs, cpu.StoreResults, cpu.WriteModel };
   double sum = 0;
   for (std::size_t i = 0; i < std::size(steps); ++i)
   {
@@ -153,7 +153,7 @@ TEST(Builder, ReportsWhereItsCpuWent)
   }
   EXPECT_LE(sum, construction);
   EXPECT_GE(sum, 0.8 * construction);
-  EXPECT_GT(cpu.Simplify, cpu.Merge); // the simplifier is the costly step
+  EXPECT_GT(cpu.DiamondSimplify, cpu.DiamondMerge); // the simplifier is the costly step
 }
 
 // The build's figures on quotas and the budget agree with the model it wrote, recomputed from

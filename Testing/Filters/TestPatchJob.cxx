@@ -123,7 +123,7 @@ TEST(PatchJob, ModelIsIdenticalWhenEveryJobTravelsAsBytes)
   EXPECT_EQ(travelled.TrianglesOverQuotas, direct.TrianglesOverQuotas);
   EXPECT_EQ(travelled.QuotaMisses, direct.QuotaMisses);
   EXPECT_EQ(travelled.PiecesRemoved, direct.PiecesRemoved);
-  EXPECT_GT(travelled.Cpu.Simplify, 0); // the jobs' CPU times travel too (their values differ)
+  EXPECT_GT(travelled.Cpu.DiamondSimplify, 0); // the jobs' CPU times travel too (their values differ)
   EXPECT_GT(travelled.Cpu.LeafEncode, 0);
   EXPECT_GT(runner.LeafJobs, 100u);
   EXPECT_GT(runner.DiamondJobs, 50u);
