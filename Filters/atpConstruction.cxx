@@ -273,25 +273,39 @@ private:
     NoteScratchPeak();
   }
 
-  /// Leaves keep the input at full resolution: their bucket, welded into an indexed patch.
-  void MakeLeafPatches(const std::vector<NodeIndex>& leaves, bool haveParents)
+  /// Runner.Run, with the calling thread's CPU time in loading jobs and storing results counted.
+  void RunJobs(std::size_t count, const PatchJobRunner::LoadJob& load,
+    const PatchJobRunner::StoreResult& store)
   {
     Runner.Run(
-      leaves.size(),
+      count,
       [&](std::size_t i, PatchJob& job) {
         ThreadCpuLap lap;
-        Partition.ReadLeaf(leaves[i], job.Soup);
-        Partition.ReleaseLeaf(leaves[i]);
+        load(i, job);
         lap.Lap(Stats.Cpu.LoadJobs);
       },
       [&](std::size_t i, PatchJobResult& made) {
         ThreadCpuLap lap;
+        store(i, made);
+        lap.Lap(Stats.Cpu.StoreResults);
+      });
+  }
+
+  /// Leaves keep the input at full resolution: their bucket, welded into an indexed patch.
+  void MakeLeafPatches(const std::vector<NodeIndex>& leaves, bool haveParents)
+  {
+    RunJobs(
+      leaves.size(),
+      [&](std::size_t i, PatchJob& job) {
+        Partition.ReadLeaf(leaves[i], job.Soup);
+        Partition.ReleaseLeaf(leaves[i]);
+      },
+      [&](std::size_t i, PatchJobResult& made) {
         Store(leaves[i], made.Patches[0], haveParents);
         Result(leaves[i]).Cone = made.Patches[0].Cone;
         Stats.Cpu.LeafWeld += made.Cpu.Prepare;
         Stats.Cpu.LeafEncode += made.Cpu.Encode;
         ReportProgress(1);
-        lap.Lap(Stats.Cpu.StoreResults);
       });
   }
 
@@ -349,21 +363,15 @@ private:
   void SimplifyDiamonds(const std::vector<NodeIndex>& inner, bool haveParents)
   {
     const DiamondGroups diamonds = GroupByDiamond(inner);
-    Runner.Run(
+    RunJobs(
       diamonds.size(),
-      [&](std::size_t i, PatchJob& job) {
-        ThreadCpuLap lap;
-        LoadDiamond(diamonds[i], job);
-        lap.Lap(Stats.Cpu.LoadJobs);
-      },
+      [&](std::size_t i, PatchJob& job) { LoadDiamond(diamonds[i], job); },
       [&](std::size_t i, PatchJobResult& made) {
-        ThreadCpuLap lap;
         SaturateDiamond(diamonds[i], made, haveParents);
         Stats.Cpu.DiamondMerge += made.Cpu.Prepare;
         Stats.Cpu.DiamondSimplify += made.Cpu.Simplify;
         Stats.Cpu.DiamondEncode += made.Cpu.Encode;
         ReportProgress(diamonds[i].size());
-        lap.Lap(Stats.Cpu.StoreResults);
       });
   }
 

@@ -86,7 +86,7 @@ PatchJobResult MakeLeafPatch(const PatchJobContext& context, const PatchJob& job
 PatchJobResult SimplifyDiamond(const PatchJobContext& context, PatchJob& job)
 {
   ThreadCpuLap lap;
-  JobCpuSeconds cpu;
+  PatchJobResult result;
   std::vector<const PatchMesh*> parts;
   for (const PatchMesh& c : job.Children)
   {
@@ -97,16 +97,15 @@ PatchJobResult SimplifyDiamond(const PatchJobContext& context, PatchJob& job)
   options.TotalQuota = quotas.Total;
   const PatchMesh merged = MergePatches(parts);
   job.Children.clear(); // one copy of the diamond in memory while it simplifies
-  lap.Lap(cpu.Prepare);
+  lap.Lap(result.Cpu.Prepare);
   const MemberLocator locator(job.Members, context.Frame);
   SimplifyResult simplified = Simplify(merged, int(job.Members.size()),
     [&locator](const double p[3], int likely) { return locator.MemberOf(p, likely); }, quotas.Members,
     options);
-  lap.Lap(cpu.Simplify);
+  lap.Lap(result.Cpu.Simplify);
   // The merged input was already off the original by up to its children's error; storing
   // the interior on a coarser grid adds its rounding.
   const PatchPrecision precision = PrecisionFor(context.Grid, simplified.Error + job.ChildError);
-  PatchJobResult result;
   result.Error = simplified.Error + job.ChildError + precision.PositionError(context.Grid);
   result.Collapses = simplified.Collapses;
   result.TrianglesOverQuotas = simplified.TrianglesOverQuotas;
@@ -117,8 +116,7 @@ PatchJobResult SimplifyDiamond(const PatchJobContext& context, PatchJob& job)
     result.Patches[i].Mesh = std::move(simplified.Regions[i]);
     Finish(result.Patches[i], context.Grid, precision);
   }
-  lap.Lap(cpu.Encode);
-  result.Cpu = cpu;
+  lap.Lap(result.Cpu.Encode);
   return result;
 }
 
