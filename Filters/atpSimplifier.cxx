@@ -203,9 +203,9 @@ private:
   void BuildQuadricsWith();
   /// Drops u's removed corners from its run, and points Fan at it.
   void GatherFan(std::uint32_t u);
-  /// Adds the cross products of u's faces (twice their areas along their normals) to normal.
-  /// Fan must hold u's fan.
-  void FanNormal(std::uint32_t u, double normal[3]) const;
+  /// Works out FanCross and FanNormal for u, unless they are u's already: once for all the
+  /// targets a vertex is checked against. Fan must hold u's fan.
+  void ShapeFan(std::uint32_t u);
   bool CanCollapse(std::uint32_t u, std::uint32_t v);
   /// Queues u's cheapest collapse; only a legal one when checkLegal, otherwise legality is
   /// checked when it comes out of the queue (most evaluations are superseded before that).
@@ -390,12 +390,23 @@ private:
 
   // Scratch, reused by every collapse: stamps make clearing unnecessary.
   FanView Fan;
+  /// ShapeFan's: the cross products of the faces of Fan as they stand (twice their areas along
+  /// their normals), 3 doubles per corner, and their sum, the fan normal; ShapedFan is the
+  /// vertex they are of, None once GatherFan has gathered a fan since.
+  std::vector<double> FanCross;
+  double FanNormal[3] = { 0, 0, 0 };
+  std::uint32_t ShapedFan = None;
   std::vector<std::uint32_t> Neighbors;
   std::vector<Candidate> Candidates;
   std::vector<int> MovedRegions;
   std::vector<std::int64_t> Delta;
   std::vector<int> Touched;
-  std::vector<std::uint32_t> MarkU, CountU, MarkV, CountV, SlotU;
+  /// Per vertex, together since a walk reads several of them for each neighbor it meets.
+  struct VertexMarks
+  {
+    std::uint32_t MarkU = 0, CountU = 0, MarkV = 0, CountV = 0, SlotU = 0;
+  };
+  std::vector<VertexMarks> Marks;
   std::vector<int> RegionFollowing, RegionPreceding;
   std::uint32_t StampU = 0, StampV = 0;
 };
@@ -480,11 +491,7 @@ Simplifier::Simplifier(const PatchMesh& mesh, int regionCount, const RegionFunct
   Kind.assign(VertexCount, VertexKind::Locked);
   Best.assign(VertexCount, Candidate());
   Into.assign(VertexCount, None);
-  MarkU.assign(VertexCount, 0);
-  CountU.assign(VertexCount, 0);
-  MarkV.assign(VertexCount, 0);
-  CountV.assign(VertexCount, 0);
-  SlotU.assign(VertexCount, 0);
+  Marks.assign(VertexCount, VertexMarks());
   if (regionCount > 1)
   {
     RegionFollowing.assign(VertexCount, 0);
@@ -589,21 +596,18 @@ void Simplifier::GatherFan(std::uint32_t u)
 {
   FanSlice& run = Fans[u];
   std::uint32_t* corners = Corners.data() + run.Start;
+  // Every corner is written and only live ones are kept: whether a corner's triangle is gone
+  // follows no pattern a branch predictor could learn.
   std::uint32_t live = 0;
   for (std::uint32_t i = 0; i < run.Count; ++i)
   {
     const std::uint32_t c = corners[i];
-    if (!Faces[TriangleOf(c)].Removed)
-    {
-      if (live != i)
-      {
-        corners[live] = c; // closes the gap of a removed corner
-      }
-      ++live;
-    }
+    corners[live] = c;
+    live += std::uint32_t(!Faces[TriangleOf(c)].Removed);
   }
   run.Count = live;
   Fan = FanView{ corners, live };
+  ShapedFan = None;
 }
 
 // A vertex may move only if its fan is one consistently oriented disk (Free) or half-disk whose
@@ -620,11 +624,11 @@ void Simplifier::Classify(std::uint32_t u)
   // CountU: times a neighbor is the next corner (edge u->x), CountV: the previous (edge x->u);
   // SlotU: the fan index of the triangle where it is the next corner.
   auto touch = [&](std::uint32_t x) {
-    if (MarkU[x] != StampU)
+    if (Marks[x].MarkU != StampU)
     {
-      MarkU[x] = StampU;
-      CountU[x] = 0;
-      CountV[x] = 0;
+      Marks[x].MarkU = StampU;
+      Marks[x].CountU = 0;
+      Marks[x].CountV = 0;
     }
   };
   for (std::size_t i = 0; i < Fan.size(); ++i)
@@ -635,9 +639,9 @@ void Simplifier::Classify(std::uint32_t u)
     const std::uint32_t y = Faces[t].V[PrevCorner(k)];
     touch(x);
     touch(y);
-    ++CountU[x];
-    ++CountV[y];
-    SlotU[x] = std::uint32_t(i);
+    ++Marks[x].CountU;
+    ++Marks[y].CountV;
+    Marks[x].SlotU = std::uint32_t(i);
   }
   bool locked = false;
   int open = 0;
@@ -648,8 +652,8 @@ void Simplifier::Classify(std::uint32_t u)
     const int k = CornerSlot(Fan[i]);
     const std::uint32_t x = Faces[t].V[NextCorner(k)];
     const std::uint32_t y = Faces[t].V[PrevCorner(k)];
-    locked = locked || CountU[x] > 1 || CountV[x] > 1;
-    if (CountV[x] == 0)
+    locked = locked || Marks[x].CountU > 1 || Marks[x].CountV > 1;
+    if (Marks[x].CountV == 0)
     {
       ++open;
       start = i;
@@ -659,7 +663,7 @@ void Simplifier::Classify(std::uint32_t u)
     {
       Faces[t].Bits &= std::uint8_t(~(1u << k));
     }
-    if (CountU[y] == 0)
+    if (Marks[y].CountU == 0)
     {
       ++open;
       locked = locked || !(Faces[t].Bits & (1u << PrevCorner(k)));
@@ -679,11 +683,11 @@ void Simplifier::Classify(std::uint32_t u)
   {
     const std::uint32_t t = TriangleOf(Fan[i]);
     const std::uint32_t y = Faces[t].V[PrevCorner(CornerSlot(Fan[i]))];
-    if (CountU[y] == 0 || SlotU[y] == start)
+    if (Marks[y].CountU == 0 || Marks[y].SlotU == start)
     {
       break;
     }
-    i = SlotU[y];
+    i = Marks[y].SlotU;
   }
   if (visited == Fan.size())
   {
@@ -785,21 +789,30 @@ void Simplifier::BuildQuadricsWith()
   }
 }
 
-void Simplifier::FanNormal(std::uint32_t u, double normal[3]) const
+void Simplifier::ShapeFan(std::uint32_t u)
 {
+  if (ShapedFan == u)
+  {
+    return;
+  }
+  ShapedFan = u;
   const double* pu = Position(u);
+  FanCross.resize(3 * Fan.size());
+  std::fill_n(FanNormal, 3, 0.0);
+  double* n = FanCross.data();
   for (std::uint32_t c : Fan)
   {
     const std::uint32_t t = TriangleOf(c);
     const int k = CornerSlot(c);
-    double a[3], b[3], n[3];
+    double a[3], b[3];
     Sub(Position(Faces[t].V[NextCorner(k)]), pu, a);
     Sub(Position(Faces[t].V[PrevCorner(k)]), pu, b);
     Cross(a, b, n);
     for (int i = 0; i < 3; ++i)
     {
-      normal[i] += n[i];
+      FanNormal[i] += n[i];
     }
+    n += 3;
   }
 }
 
@@ -817,17 +830,14 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
 {
   std::uint32_t opposite[2] = { None, None };
   int opposites = 0;
-  const double* pu = Position(u);
   const double* pv = Position(v);
   const double minFacing2 = Facing == FacingGuard::NoFins ? FinCosine * FinCosine : 0;
-  double fanNormal[3] = { 0, 0, 0 };
-  if (Facing != FacingGuard::Off)
-  {
-    FanNormal(u, fanNormal);
-  }
-  const double fanNormal2 = Dot(fanNormal, fanNormal);
+  ShapeFan(u);
+  const double fanNormal2 = Dot(FanNormal, FanNormal);
+  const double* before = FanCross.data() - 3;
   for (std::uint32_t c : Fan)
   {
+    before += 3;
     const std::uint32_t t = TriangleOf(c);
     const int k = CornerSlot(c);
     const std::uint32_t x = Faces[t].V[NextCorner(k)];
@@ -843,10 +853,7 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
     }
     const double* px = Position(x);
     const double* py = Position(y);
-    double a[3], b[3], before[3], after[3];
-    Sub(px, pu, a);
-    Sub(py, pu, b);
-    Cross(a, b, before);
+    double a[3], b[3], after[3];
     Sub(px, pv, a);
     Sub(py, pv, b);
     Cross(a, b, after);
@@ -859,7 +866,7 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
     // around u.
     if (Facing != FacingGuard::Off)
     {
-      const double facing = Dot(after, fanNormal);
+      const double facing = Dot(after, FanNormal);
       if (facing <= 0 || facing * facing <= minFacing2 * area2 * fanNormal2)
       {
         return false;
@@ -877,12 +884,12 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
     ++vTriangles;
     for (std::uint32_t x : { Faces[t].V[NextCorner(k)], Faces[t].V[PrevCorner(k)] })
     {
-      if (MarkV[x] != StampV)
+      if (Marks[x].MarkV != StampV)
       {
-        MarkV[x] = StampV;
-        CountV[x] = 0;
+        Marks[x].MarkV = StampV;
+        Marks[x].CountV = 0;
       }
-      ++CountV[x];
+      ++Marks[x].CountV;
     }
   });
   if (Fan.size() == std::size_t(opposites) && vTriangles == std::size_t(opposites))
@@ -900,23 +907,23 @@ bool Simplifier::CanCollapse(std::uint32_t u, std::uint32_t v)
     const bool moves = x != v && y != v;
     for (std::uint32_t z : { x, y })
     {
-      if (MarkU[z] != StampU)
+      if (Marks[z].MarkU != StampU)
       {
-        MarkU[z] = StampU;
-        CountU[z] = 0;
+        Marks[z].MarkU = StampU;
+        Marks[z].CountU = 0;
       }
-      ++CountU[z];
-      if (moves && MarkV[z] == StampV && z != opposite[0] && z != opposite[1])
+      ++Marks[z].CountU;
+      if (moves && Marks[z].MarkV == StampV && z != opposite[0] && z != opposite[1])
       {
         return false;
       }
     }
-    movesPocket = movesPocket || (moves && opposites == 2 && MarkV[x] == StampV && MarkV[y] == StampV);
+    movesPocket = movesPocket || (moves && opposites == 2 && Marks[x].MarkV == StampV && Marks[y].MarkV == StampV);
   }
   for (int i = 0; i < opposites; ++i)
   {
     const std::uint32_t w = opposite[i];
-    if (CountV[w] > 2 || (CountV[w] == 1 && CountU[w] == 1))
+    if (Marks[w].CountV > 2 || (Marks[w].CountV == 1 && Marks[w].CountU == 1))
     {
       return false;
     }
@@ -956,14 +963,15 @@ void Simplifier::ForEachCollapse(std::uint32_t u, Consider consider)
     for (std::size_t i = 0; ranksDiffer && i < Fan.size(); ++i)
     {
       const std::uint32_t t = TriangleOf(Fan[i]);
-      MarkU[Faces[t].V[PrevCorner(CornerSlot(Fan[i]))]] = StampU;
-      SlotU[Faces[t].V[PrevCorner(CornerSlot(Fan[i]))]] = t;
+      VertexMarks& previous = Marks[Faces[t].V[PrevCorner(CornerSlot(Fan[i]))]];
+      previous.MarkU = StampU;
+      previous.SlotU = t;
     }
     for (std::uint32_t c : Fan)
     {
       const std::uint32_t t = TriangleOf(c);
       const std::uint32_t x = Faces[t].V[NextCorner(CornerSlot(c))];
-      const int other = ranksDiffer && MarkU[x] == StampU ? Faces[SlotU[x]].Region : Faces[t].Region;
+      const int other = ranksDiffer && Marks[x].MarkU == StampU ? Faces[Marks[x].SlotU].Region : Faces[t].Region;
       consider(x, Faces[t].Region, other);
     }
     return;
@@ -1061,9 +1069,9 @@ void Simplifier::NoteRegionsAround(std::uint32_t v)
     const std::uint32_t after = Faces[t].V[NextCorner(k)];
     for (std::uint32_t x : { before, after })
     {
-      if (MarkV[x] != StampV)
+      if (Marks[x].MarkV != StampV)
       {
-        MarkV[x] = StampV;
+        Marks[x].MarkV = StampV;
         RegionFollowing[x] = 0;
         RegionPreceding[x] = 0;
       }
@@ -1080,7 +1088,7 @@ void Simplifier::Offer(std::uint32_t x, std::uint32_t v)
     Evaluate(x, false);
     return;
   }
-  const bool noted = RegionCount > 1 && MarkV[x] == StampV;
+  const bool noted = RegionCount > 1 && Marks[x].MarkV == StampV;
   const Candidate candidate =
     Price(x, v, noted ? RegionFollowing[x] : 0, noted ? RegionPreceding[x] : 0);
   if (Before(candidate, Best[x]))
@@ -1499,9 +1507,9 @@ SimplifyResult Simplifier::Run()
       for (int k = 0; k < 3; ++k)
       {
         const std::uint32_t x = Faces[t].V[k];
-        if (x != u && MarkV[x] != StampV)
+        if (x != u && Marks[x].MarkV != StampV)
         {
-          MarkV[x] = StampV;
+          Marks[x].MarkV = StampV;
           Neighbors.push_back(x);
         }
       }
@@ -1668,13 +1676,13 @@ PatchMesh Simplifier::Extract(const std::vector<std::uint32_t>& triangles)
     for (int k = 0; k < 3; ++k)
     {
       const std::uint32_t v = face.V[k];
-      if (MarkU[v] != StampU)
+      if (Marks[v].MarkU != StampU)
       {
-        MarkU[v] = StampU;
-        SlotU[v] = std::uint32_t(used.size());
+        Marks[v].MarkU = StampU;
+        Marks[v].SlotU = std::uint32_t(used.size());
         used.push_back(v);
       }
-      out.Indices[3 * i + std::size_t(k)] = SlotU[v];
+      out.Indices[3 * i + std::size_t(k)] = Marks[v].SlotU;
     }
     out.BoundaryEdges[i] = face.Bits;
   }
