@@ -19,6 +19,37 @@ std::uint64_t HashPosition(const std::uint32_t bits[3])
 
 } // namespace
 
+PositionWelder::PositionWelder(std::size_t maxVertices, float* positions)
+  : Positions(positions)
+{
+  std::size_t capacity = 16;
+  while (capacity < 2 * maxVertices)
+  {
+    capacity *= 2;
+  }
+  Slots.assign(capacity, 0);
+  Mask = capacity - 1;
+}
+
+std::uint32_t PositionWelder::Weld(const float p[3], bool& added)
+{
+  std::uint32_t bits[3];
+  std::memcpy(bits, p, sizeof(bits));
+  std::size_t s = HashPosition(bits) & Mask;
+  for (; Slots[s] != 0; s = (s + 1) & Mask)
+  {
+    if (std::memcmp(&Positions[3 * (Slots[s] - 1)], bits, sizeof(bits)) == 0)
+    {
+      added = false;
+      return Slots[s] - 1;
+    }
+  }
+  std::memcpy(&Positions[3 * Vertices], bits, sizeof(bits));
+  Slots[s] = std::uint32_t(++Vertices);
+  added = true;
+  return Slots[s] - 1;
+}
+
 PatchMesh MergePatches(
   const std::vector<const PatchMesh*>& patches, std::vector<std::uint32_t>* trianglePatch)
 {
@@ -41,16 +72,8 @@ PatchMesh MergePatches(
   out.Colors.resize(colors ? 4 * vertexCount : 0);
   out.Indices.resize(3 * triangleCount);
   out.BoundaryEdges.resize(triangleCount);
-  std::size_t vertices = 0, triangles = 0;
-
-  // Open addressing on the position bits; slots hold output index + 1 (0 is empty). Only
-  // lookups touch the table, so its layout cannot influence the output order.
-  std::size_t capacity = 16;
-  while (capacity < 2 * vertexCount)
-  {
-    capacity *= 2;
-  }
-  std::vector<std::uint32_t> slots(capacity, 0);
+  std::size_t triangles = 0;
+  PositionWelder welder(vertexCount, out.Positions.data());
   std::vector<std::uint32_t> remap;
   if (trianglePatch)
   {
@@ -64,33 +87,19 @@ PatchMesh MergePatches(
     remap.resize(n);
     for (std::size_t v = 0; v < n; ++v)
     {
-      std::uint32_t bits[3];
-      std::memcpy(bits, &p->Positions[3 * v], sizeof(bits));
-      std::size_t s = HashPosition(bits) & (capacity - 1);
-      for (; slots[s] != 0; s = (s + 1) & (capacity - 1))
+      bool added = false;
+      const std::uint32_t w = welder.Weld(&p->Positions[3 * v], added);
+      if (added && normals)
       {
-        if (std::memcmp(&out.Positions[3 * (slots[s] - 1)], bits, sizeof(bits)) == 0)
-        {
-          break;
-        }
+        const float up[3] = { 0, 0, 1 };
+        std::copy_n(p->Normals.empty() ? up : &p->Normals[3 * v], 3, &out.Normals[3 * std::size_t(w)]);
       }
-      if (slots[s] == 0)
+      if (added && colors)
       {
-        slots[s] = std::uint32_t(vertices + 1);
-        std::copy_n(&p->Positions[3 * v], 3, &out.Positions[3 * vertices]);
-        if (normals)
-        {
-          const float up[3] = { 0, 0, 1 };
-          std::copy_n(p->Normals.empty() ? up : &p->Normals[3 * v], 3, &out.Normals[3 * vertices]);
-        }
-        if (colors)
-        {
-          const std::uint8_t white[4] = { 255, 255, 255, 255 };
-          std::copy_n(p->HasColors() ? &p->Colors[4 * v] : white, 4, &out.Colors[4 * vertices]);
-        }
-        ++vertices;
+        const std::uint8_t white[4] = { 255, 255, 255, 255 };
+        std::copy_n(p->HasColors() ? &p->Colors[4 * v] : white, 4, &out.Colors[4 * std::size_t(w)]);
       }
-      remap[v] = slots[s] - 1;
+      remap[v] = w;
     }
     for (std::size_t t = 0; t < p->TriangleCount(); ++t)
     {
@@ -111,6 +120,7 @@ PatchMesh MergePatches(
       }
     }
   }
+  const std::size_t vertices = welder.Count();
   out.Positions.resize(3 * vertices);
   out.Normals.resize(normals ? 3 * vertices : 0);
   out.Colors.resize(colors ? 4 * vertices : 0);

@@ -8,7 +8,6 @@
 #include "atpSimplifier.h"
 
 #include <algorithm>
-#include <numeric>
 
 namespace atp
 {
@@ -42,30 +41,47 @@ void Finish(MadePatch& made, const QuantizationGrid& grid, const PatchPrecision&
 }
 
 /// Without input colors the soup's (white) corner colors are left out: the model then has none.
+/// Welded as MergePatches welds (the first corner at a position gives its normal and color, and
+/// triangles the weld makes degenerate go), straight from the soup: a normal is decoded once per
+/// vertex rather than once per corner.
 PatchMesh WeldSoup(const std::vector<SoupTriangle>& soup, bool colors)
 {
-  PatchMesh corners;
-  corners.Positions.reserve(9 * soup.size());
-  corners.Normals.reserve(9 * soup.size());
-  corners.Colors.reserve(colors ? 12 * soup.size() : 0);
+  const std::size_t corners = 3 * soup.size();
+  PatchMesh mesh;
+  mesh.Positions.resize(3 * corners);
+  mesh.Normals.resize(3 * corners);
+  mesh.Colors.resize(colors ? 4 * corners : 0);
+  mesh.Indices.reserve(corners);
+  mesh.BoundaryEdges.reserve(soup.size());
+  PositionWelder welder(corners, mesh.Positions.data());
   for (const SoupTriangle& t : soup)
   {
+    std::uint32_t v[3];
     for (int c = 0; c < 3; ++c)
     {
-      float n[3];
-      DecodeNormal(t.Normals[c], n);
-      corners.Positions.insert(corners.Positions.end(), t.V[c], t.V[c] + 3);
-      corners.Normals.insert(corners.Normals.end(), n, n + 3);
-      if (colors)
+      bool added = false;
+      v[c] = welder.Weld(t.V[c], added);
+      if (added)
       {
-        corners.Colors.insert(corners.Colors.end(), t.Colors[c], t.Colors[c] + 4);
+        DecodeNormal(t.Normals[c], &mesh.Normals[3 * std::size_t(v[c])]);
+      }
+      if (added && colors)
+      {
+        std::copy_n(t.Colors[c], 4, &mesh.Colors[4 * std::size_t(v[c])]);
       }
     }
-    corners.BoundaryEdges.push_back(t.BoundaryEdges);
+    if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0])
+    {
+      continue;
+    }
+    mesh.Indices.insert(mesh.Indices.end(), v, v + 3);
+    mesh.BoundaryEdges.push_back(t.BoundaryEdges);
   }
-  corners.Indices.resize(3 * soup.size());
-  std::iota(corners.Indices.begin(), corners.Indices.end(), 0u);
-  return MergePatches({ &corners });
+  const std::size_t vertices = welder.Count();
+  mesh.Positions.resize(3 * vertices);
+  mesh.Normals.resize(3 * vertices);
+  mesh.Colors.resize(colors ? 4 * vertices : 0);
+  return mesh;
 }
 
 /// Leaves keep the input at full resolution: their bucket, welded into an indexed patch.

@@ -662,6 +662,31 @@ TEST(Simplifier, DeterministicAcrossRunsAndThreads)
   }
 }
 
+TEST(MergePatches, WelderNumbersPositionsInOrderOfFirstSightBitForBit)
+{
+  const float points[][3] = { { 1, 2, 3 }, { 4, 5, 6 }, { 1, 2, 3 }, { 0.0f, 0, 0 }, { -0.0f, 0, 0 },
+    { 4, 5, 6 } };
+  std::vector<float> positions(3 * std::size(points), -1);
+  PositionWelder welder(std::size(points), positions.data());
+  const std::uint32_t expected[] = { 0, 1, 0, 2, 3, 1 };
+  const bool expectedAdded[] = { true, true, false, true, true, false };
+  for (std::size_t i = 0; i < std::size(points); ++i)
+  {
+    bool added = !expectedAdded[i];
+    EXPECT_EQ(welder.Weld(points[i], added), expected[i]) << "point " << i;
+    EXPECT_EQ(added, expectedAdded[i]) << "point " << i;
+  }
+  // -0 and +0 differ in their bits: a position is welded only to the very same one.
+  EXPECT_EQ(welder.Count(), 4u);
+  const float stored[] = { 1, 2, 3, 4, 5, 6, 0, 0, 0, -0.0f, 0, 0 };
+  for (std::size_t i = 0; i < std::size(stored); ++i)
+  {
+    EXPECT_EQ(std::signbit(positions[i]), std::signbit(stored[i])) << "float " << i;
+    EXPECT_EQ(positions[i], stored[i]) << "float " << i;
+  }
+  EXPECT_EQ(positions[12], -1.0f) << "nothing is written past the positions seen";
+}
+
 TEST(MergePatches, WeldsTwoHalvesIntoOneManifold)
 {
   const PatchMesh grid = Grid(20, Bumps, true);
