@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
 
 namespace atp
 {
@@ -21,6 +22,7 @@ std::uint64_t HashPosition(const std::uint32_t bits[3])
 
 PositionWelder::PositionWelder(std::size_t maxVertices, float* positions)
   : Positions(positions)
+  , MaxVertices(maxVertices)
 {
   std::size_t capacity = 16;
   while (capacity < 2 * maxVertices)
@@ -43,6 +45,10 @@ std::uint32_t PositionWelder::Weld(const float p[3], bool& added)
       added = false;
       return Slots[s] - 1;
     }
+  }
+  if (Vertices == MaxVertices)
+  {
+    throw std::logic_error("PositionWelder: more distinct positions than it was made for");
   }
   std::memcpy(&Positions[3 * Vertices], bits, sizeof(bits));
   Slots[s] = std::uint32_t(++Vertices);

@@ -22,13 +22,15 @@ public:
   PositionWelder(std::size_t maxVertices, float* positions);
 
   /// The number of the vertex at p; `added` tells whether it is new (its position then stored,
-  /// numbered after all earlier ones).
+  /// numbered after all earlier ones). Throws std::logic_error rather than write past the
+  /// room for maxVertices.
   std::uint32_t Weld(const float p[3], bool& added);
   /// Distinct positions seen so far.
   std::size_t Count() const { return Vertices; }
 
 private:
   float* Positions;
+  std::size_t MaxVertices;
   std::size_t Vertices = 0;
   std::vector<std::uint32_t> Slots; ///< vertex number + 1; 0 is empty
   std::size_t Mask = 0;

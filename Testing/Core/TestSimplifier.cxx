@@ -685,6 +685,16 @@ TEST(MergePatches, WelderNumbersPositionsInOrderOfFirstSightBitForBit)
     EXPECT_EQ(positions[i], stored[i]) << "float " << i;
   }
   EXPECT_EQ(positions[12], -1.0f) << "nothing is written past the positions seen";
+
+  // Made for 2: a third distinct position is refused, not written past the room.
+  float room[6] = { -1, -1, -1, -1, -1, -1 };
+  PositionWelder small(2, room);
+  bool added = false;
+  small.Weld(points[0], added);
+  small.Weld(points[1], added);
+  EXPECT_EQ(small.Weld(points[2], added), 0u) << "a position seen before still welds";
+  EXPECT_THROW(small.Weld(points[3], added), std::logic_error);
+  EXPECT_EQ(small.Count(), 2u);
 }
 
 TEST(MergePatches, WeldsTwoHalvesIntoOneManifold)
