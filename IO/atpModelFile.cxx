@@ -240,7 +240,8 @@ void ModelFile::ValidateHeader()
   }
   if (h.Version >= 1 && h.Version < ModelVersion)
   {
-    // Older versions encoded patches differently (16-bit normals; no position prediction).
+    // Older versions encoded patches differently (16-bit normals; no position prediction;
+    // normals without prediction).
     Throw(Cat("made by the older version ", h.Version, " of the format (this reader reads version ",
       ModelVersion, "): build it again"));
   }

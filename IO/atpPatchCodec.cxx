@@ -1,6 +1,7 @@
 #include "atpPatchCodec.h"
 
 #include "atpNormalEncoding.h"
+#include "atpNormalPrediction.h"
 
 #include <meshoptimizer.h>
 
@@ -22,6 +23,8 @@ constexpr std::size_t NormalStride = 2 * sizeof(std::int16_t);
 constexpr std::size_t ColorStride = 4;
 /// Normals are stored with NormalBits = 16 - NormalShift bits per octahedral coordinate.
 constexpr int NormalShift = 16 - NormalBits;
+/// The largest stored octahedral coordinate: |x| + |y| of a stored normal is about this.
+constexpr std::int32_t StoredNormalScale = 1 << (NormalBits - 1);
 // meshopt's index codec: a header byte, at least one code byte per triangle, a 16-byte tail.
 constexpr std::uint64_t IndexStreamOverhead = 17;
 // meshopt's vertex codec spends at least 2 bits per 16 vertices on each byte of a vertex.
@@ -329,21 +332,39 @@ std::int16_t UnstoredNormal(std::int16_t stored)
   const int value = int(stored) * (1 << NormalShift);
   return static_cast<std::int16_t>(std::min(32767, std::max(-32767, value)));
 }
-/// Parallelogram prediction (Touma and Gotsman 1998), the walk encoder and decoder share:
-/// triangles in order; a vertex at its first use is predicted from vertices already visited:
-/// across the edge it faces, from the triangle on the other side if that one came earlier
-/// (a + b - c), else from a visited corner of its triangle, else from the last vertex visited
-/// (`start` for the first). visit(v, prediction) must set q[v] (the encoder's are already
-/// there); it returns false to stop the walk. Returns whether every vertex was visited.
+/// The visited vertices that predict a vertex: the parallelogram a + b - c (Touma and Gotsman
+/// 1998) when C is set; else vertex A; else (A unset too: the walk's first vertex) nothing.
+struct Predictors
+{
+  static constexpr std::uint32_t None = ~0u;
+  std::uint32_t A = None, B = None, C = None;
+
+  /// The prediction of the attribute at values[Width * v + x], or `fallback` without A.
+  template<int Width, typename T, typename U>
+  void Predict(const T* values, const U* fallback, U* prediction) const
+  {
+    for (int x = 0; x < Width; ++x)
+    {
+      prediction[x] = C != None
+        ? U(values[Width * A + x]) + U(values[Width * B + x]) - U(values[Width * C + x])
+        : (A != None ? U(values[Width * A + x]) : fallback[x]);
+    }
+  }
+};
+
+/// The walk the encoder and decoder share: triangles in order; a vertex at its first use is
+/// predicted from vertices already visited: across the edge it faces, from the triangle on the
+/// other side if that one came earlier (parallelogram), else from a visited corner of its
+/// triangle, else from the last vertex visited. visit(v, predictors) returns false to stop the
+/// walk. Returns whether every vertex was visited.
 template<typename Visit>
-bool PredictionWalk(const std::vector<std::uint32_t>& indices, std::size_t vertexCount,
-  const std::uint32_t start[3], std::vector<std::int64_t>& q, const Visit& visit)
+bool PredictionWalk(const std::vector<std::uint32_t>& indices, std::size_t vertexCount, const Visit& visit)
 {
   const EdgesByStart edges(indices, vertexCount);
   const std::size_t triangles = indices.size() / 3;
   std::vector<char> visited(vertexCount, 0);
   std::size_t visitedCount = 0;
-  std::int64_t last[3] = { start[0], start[1], start[2] };
+  std::uint32_t last = Predictors::None;
   for (std::size_t t = 0; t < triangles; ++t)
   {
     for (int k = 0; k < 3; ++k)
@@ -354,7 +375,8 @@ bool PredictionWalk(const std::vector<std::uint32_t>& indices, std::size_t verte
         continue;
       }
       const std::uint32_t a = indices[3 * t + (k + 1) % 3], b = indices[3 * t + (k + 2) % 3];
-      std::int64_t prediction[3] = { last[0], last[1], last[2] };
+      Predictors by;
+      by.A = last;
       std::uint32_t across = ~0u;
       if (visited[a] && visited[b])
       {
@@ -366,30 +388,21 @@ bool PredictionWalk(const std::vector<std::uint32_t>& indices, std::size_t verte
       if (across != ~0u)
       {
         const std::uint32_t* s = &indices[3 * std::size_t(across)];
-        const std::uint32_t c = s[0] != a && s[0] != b ? s[0] : (s[1] != a && s[1] != b ? s[1] : s[2]);
-        for (int x = 0; x < 3; ++x)
-        {
-          prediction[x] = q[3 * a + x] + q[3 * b + x] - q[3 * c + x];
-        }
+        by.A = a;
+        by.B = b;
+        by.C = s[0] != a && s[0] != b ? s[0] : (s[1] != a && s[1] != b ? s[1] : s[2]);
       }
       else if (visited[a] || visited[b])
       {
-        const std::uint32_t known = visited[a] ? a : b;
-        for (int x = 0; x < 3; ++x)
-        {
-          prediction[x] = q[3 * known + x];
-        }
+        by.A = visited[a] ? a : b;
       }
-      if (!visit(v, prediction))
+      if (!visit(v, by))
       {
         return false;
       }
       visited[v] = 1;
       ++visitedCount;
-      for (int x = 0; x < 3; ++x)
-      {
-        last[x] = q[3 * v + x];
-      }
+      last = v;
     }
   }
   return visitedCount == vertexCount;
@@ -415,6 +428,40 @@ inline std::uint32_t ZigZag(std::int64_t value)
 inline std::int64_t UnZigZag(std::uint32_t value)
 {
   return std::int64_t(value >> 1) ^ -std::int64_t(value & 1);
+}
+
+/// meshopt's vertex codec stores each byte of a vertex as the zigzag-coded difference from the
+/// same byte of the vertex before. Residuals of a prediction are already small and independent;
+/// differencing them again would double their spread. Storing each byte lane's running sum
+/// instead makes the differences the codec takes exactly the residual bytes.
+template<std::size_t Stride>
+void SumByteLanes(std::uint8_t* data, std::size_t count)
+{
+  std::uint8_t sum[Stride] = {};
+  for (std::size_t i = 0; i < count; ++i, data += Stride)
+  {
+    for (std::size_t lane = 0; lane < Stride; ++lane)
+    {
+      sum[lane] = std::uint8_t(sum[lane] + ((data[lane] >> 1) ^ (0u - (data[lane] & 1u))));
+      data[lane] = sum[lane];
+    }
+  }
+}
+
+/// Undoes SumByteLanes.
+template<std::size_t Stride>
+void DifferenceByteLanes(std::uint8_t* data, std::size_t count)
+{
+  std::uint8_t previous[Stride] = {};
+  for (std::size_t i = 0; i < count; ++i, data += Stride)
+  {
+    for (std::size_t lane = 0; lane < Stride; ++lane)
+    {
+      const std::uint8_t difference = std::uint8_t(data[lane] - previous[lane]);
+      previous[lane] = data[lane];
+      data[lane] = std::uint8_t((difference << 1) ^ (0u - (difference >> 7)));
+    }
+  }
 }
 } // namespace
 
@@ -535,17 +582,30 @@ std::vector<std::uint8_t> EncodePatch(const PatchMesh& mesh, const QuantizationG
     out.data() + PatchHeaderBytes, indexBytes);
   // Positions become residuals of their prediction; interior ones count coarse steps.
   std::vector<std::int64_t> q(positions.begin(), positions.end());
-  PredictionWalk(indices, used, header.Min, q, [&](std::uint32_t v, const std::int64_t* prediction) {
+  const std::int64_t start[3] = { header.Min[0], header.Min[1], header.Min[2] };
+  PredictionWalk(indices, used, [&](std::uint32_t v, const Predictors& by) {
     const int shift = v < header.BorderVertices ? 0 : header.InteriorShift;
+    std::int64_t prediction[3];
+    by.Predict<3>(q.data(), start, prediction);
     for (int a = 0; a < 3; ++a)
     {
       positions[3 * v + a] = ZigZag((q[3 * v + a] - RoundPrediction(prediction[a], shift)) >> shift);
     }
     return true;
   });
+  SumByteLanes<PositionStride>(reinterpret_cast<std::uint8_t*>(positions.data()), used);
+  // Normals become residuals of their prediction from the (decoded) geometry.
+  std::vector<std::int32_t> predicted(2 * used);
+  PredictNormals(indices, q.data(), used, StoredNormalScale, predicted.data());
+  std::vector<std::uint16_t> normalResiduals(2 * used);
+  for (std::size_t i = 0; i < 2 * used; ++i)
+  {
+    normalResiduals[i] = static_cast<std::uint16_t>(ZigZag(normals[i] - predicted[i]));
+  }
+  SumByteLanes<NormalStride>(reinterpret_cast<std::uint8_t*>(normalResiduals.data()), used);
 
   EncodeVertices(out, header.StreamBytes[PositionStream], positions, PositionStride);
-  EncodeVertices(out, header.StreamBytes[NormalStream], normals, NormalStride);
+  EncodeVertices(out, header.StreamBytes[NormalStream], normalResiduals, NormalStride);
   if (mesh.HasColors())
   {
     EncodeVertices(out, header.StreamBytes[ColorStream], colors, ColorStride);
@@ -610,11 +670,15 @@ void DecodePatch(
   {
     DecodeVertices(out.Positions.data(), vertexCount, PositionStride, streams[PositionStream],
       h.StreamBytes[PositionStream], "position");
+    DifferenceByteLanes<PositionStride>(reinterpret_cast<std::uint8_t*>(out.Positions.data()), vertexCount);
   }
   std::vector<std::int64_t> q(3 * vertexCount);
-  const bool inside = PredictionWalk(out.Indices, vertexCount, h.Min, q,
-    [&](std::uint32_t v, const std::int64_t* prediction) {
+  const std::int64_t start[3] = { h.Min[0], h.Min[1], h.Min[2] };
+  const bool inside = PredictionWalk(out.Indices, vertexCount,
+    [&](std::uint32_t v, const Predictors& by) {
       const int shift = v < h.BorderVertices ? 0 : h.InteriorShift;
+      std::int64_t prediction[3];
+      by.Predict<3>(q.data(), start, prediction);
       std::uint32_t residual[3];
       std::memcpy(residual, &out.Positions[3 * std::size_t(v)], sizeof(residual));
       for (int a = 0; a < 3; ++a)
@@ -649,14 +713,23 @@ void DecodePatch(
   {
     DecodeVertices(packed, vertexCount, NormalStride, streams[NormalStream],
       h.StreamBytes[NormalStream], "normal");
+    DifferenceByteLanes<NormalStride>(packed, vertexCount);
   }
+  std::vector<std::int32_t> predicted(2 * vertexCount);
+  PredictNormals(out.Indices, q.data(), vertexCount, StoredNormalScale, predicted.data());
   for (std::size_t v = 0; v < vertexCount; ++v)
   {
+    std::uint16_t residual[2];
+    std::memcpy(residual, packed + NormalStride * v, sizeof(residual));
     std::int16_t octahedral[2];
-    std::memcpy(octahedral, packed + NormalStride * v, sizeof(octahedral));
-    for (std::int16_t& o : octahedral)
+    for (int k = 0; k < 2; ++k)
     {
-      o = UnstoredNormal(o);
+      const std::int64_t stored = predicted[2 * v + k] + UnZigZag(residual[k]);
+      if (stored < -StoredNormalScale || stored > StoredNormalScale)
+      {
+        Fail("normal outside the octahedral square");
+      }
+      octahedral[k] = UnstoredNormal(static_cast<std::int16_t>(stored));
     }
     DecodeNormal(octahedral, &out.Normals[3 * v]);
   }

@@ -10,11 +10,14 @@
 // - indices: meshopt_encodeIndexBuffer of the vertex-cache-ordered triangle list;
 // - positions: meshopt_encodeVertexBuffer of 3 x u32 per vertex: the zigzag-coded residual of
 //   the vertex's QuantizationGrid integers from their parallelogram prediction (PredictionWalk
-//   in atpPatchCodec.cxx), in units of 2^S steps for interior vertices;
-// - normals: meshopt_encodeVertexBuffer of 2 x i16 octahedral coordinates of NormalBits bits
-//   (EncodeNormal of atpNormalEncoding.h, divided by 2^(16 - NormalBits) and rounded; at most
-//   0.12 degrees off any unit normal, half a grey level of diffuse shading at most; the same normal
-//   stores the same bits in every patch, so shared vertices shade alike);
+//   in atpPatchCodec.cxx), in units of 2^S steps for interior vertices, stored as running sums
+//   per byte lane (SumByteLanes: the codec's own byte deltas then see the residuals);
+// - normals: meshopt_encodeVertexBuffer of 2 x u16 per vertex, the zigzag-coded residuals of
+//   octahedral coordinates of NormalBits bits (EncodeNormal of atpNormalEncoding.h, divided by
+//   2^(16 - NormalBits) and rounded; at most 0.12 degrees off any unit normal, half a grey level
+//   of diffuse shading at most; the same normal stores the same bits in every patch, so shared
+//   vertices shade alike) from their prediction by the decoded geometry (PredictNormals of
+//   atpNormalPrediction.h), stored as running sums per byte lane too;
 // - colors: meshopt_encodeVertexBuffer of RGBA8, only with PatchFlagColors.
 // An empty patch is the header alone.
 #ifndef atpPatchCodec_h
@@ -32,7 +35,7 @@
 namespace atp
 {
 
-constexpr std::uint8_t PatchFormatVersion = 3;
+constexpr std::uint8_t PatchFormatVersion = 4;
 /// Bits per octahedral normal coordinate in the normal stream. 16 bits cost 0.7 bytes more
 /// per triangle (after compression) than 11 for no difference a display can show.
 constexpr int NormalBits = 11;

@@ -6,6 +6,7 @@
 #include "atpQuantizationGrid.h"
 
 #include <gtest/gtest.h>
+#include <meshoptimizer.h>
 
 #include <algorithm>
 #include <array>
@@ -398,6 +399,14 @@ std::size_t PositionStreamBytes(const std::vector<std::uint8_t>& bytes)
   return size;
 }
 
+/// Bytes of the normal stream (the third).
+std::size_t NormalStreamBytes(const std::vector<std::uint8_t>& bytes)
+{
+  std::uint32_t size;
+  std::memcpy(&size, &bytes[atp::PatchHeaderBytes - 8], sizeof(size));
+  return size;
+}
+
 // Construction takes a patch's sphere and cone from what a reader decodes, which the encoder
 // hands out without decoding: it must be exactly that.
 TEST(PatchCodec, EncodersDecodedMeshIsTheDecodersBitForBit)
@@ -450,7 +459,8 @@ TEST(PatchCodec, CoarserInteriorKeepsTheBorderExactAndShrinks)
   coarse.InteriorPositionShift = 12;
   const std::vector<std::uint8_t> exact = atp::EncodePatch(mesh, grid);
   const std::vector<std::uint8_t> bytes = atp::EncodePatch(mesh, grid, coarse);
-  EXPECT_LT(bytes.size(), exact.size() * 9 / 10);
+  // Positions only: normals are predicted from the geometry, which the rounding changes.
+  EXPECT_LT(PositionStreamBytes(bytes), PositionStreamBytes(exact) * 9 / 10);
   atp::PatchMesh decoded, lossless;
   atp::DecodePatch(bytes.data(), bytes.size(), grid, decoded);
   atp::DecodePatch(exact.data(), exact.size(), grid, lossless);
@@ -555,6 +565,91 @@ TEST(PatchCodec, AbsurdCountsAreRejectedBeforeAllocating)
   {
     EXPECT_NE(std::string(e.what()).find("2147483648 vertices"), std::string::npos) << e.what();
   }
+}
+
+// A normal stream whose records are all alike: after the byte-lane differences every vertex but
+// the first has residual 0, and the first has the residual `first` on its x coordinate.
+std::vector<std::uint8_t> NormalStreamWithFirstResidual(std::size_t vertices, std::int32_t first)
+{
+  const std::uint16_t zigzag = std::uint16_t(first < 0 ? -2 * first - 1 : 2 * first);
+  // Each stored byte is the running sum of the un-zigzagged residual bytes.
+  const auto unzigzag8 = [](std::uint8_t z) { return std::uint8_t((z >> 1) ^ (0u - (z & 1u))); };
+  const std::uint8_t record[4] = { unzigzag8(std::uint8_t(zigzag)), unzigzag8(std::uint8_t(zigzag >> 8)), 0, 0 };
+  std::vector<std::uint8_t> records;
+  for (std::size_t v = 0; v < vertices; ++v)
+  {
+    records.insert(records.end(), record, record + 4);
+  }
+  std::vector<std::uint8_t> stream(meshopt_encodeVertexBufferBound(vertices, 4));
+  stream.resize(meshopt_encodeVertexBuffer(stream.data(), stream.size(), records.data(), vertices, 4));
+  return stream;
+}
+
+/// `patch` (without colors) with its normal stream replaced by `stream`.
+std::vector<std::uint8_t> WithNormalStream(
+  const std::vector<std::uint8_t>& patch, const std::vector<std::uint8_t>& stream)
+{
+  std::uint32_t sizes[4];
+  std::memcpy(sizes, &patch[atp::PatchHeaderBytes - 16], sizeof(sizes));
+  const std::size_t normalsStart = atp::PatchHeaderBytes + sizes[0] + sizes[1];
+  std::vector<std::uint8_t> bytes(patch.begin(), patch.begin() + normalsStart);
+  bytes.insert(bytes.end(), stream.begin(), stream.end());
+  PutU32(bytes, atp::PatchHeaderBytes - 8, std::uint32_t(stream.size()));
+  return bytes;
+}
+
+// Normals are stored as residuals of their prediction from the decoded geometry; a residual
+// that lands outside the octahedral square is corruption, reported, not clamped into a normal.
+TEST(PatchCodec, NormalOutsideTheOctahedralSquareIsRejected)
+{
+  const atp::QuantizationGrid grid = GridFor(-2, 2);
+  const atp::PatchMesh mesh = Terrain(0, 0, 1, 12, false, 4);
+  const std::vector<std::uint8_t> valid = atp::EncodePatch(mesh, grid);
+  const std::size_t vertices = mesh.VertexCount();
+  atp::PatchMesh out;
+  // Within the square whatever the prediction (|prediction| <= 1024): decodes.
+  for (const std::int32_t residual : { 0, 1, -1 })
+  {
+    const std::vector<std::uint8_t> bytes =
+      WithNormalStream(valid, NormalStreamWithFirstResidual(vertices, residual));
+    EXPECT_NO_THROW(atp::DecodePatch(bytes.data(), bytes.size(), grid, out)) << residual;
+  }
+  for (const std::int32_t residual : { 2049, -2049, 20000, -30000 })
+  {
+    const std::vector<std::uint8_t> bytes =
+      WithNormalStream(valid, NormalStreamWithFirstResidual(vertices, residual));
+    try
+    {
+      atp::DecodePatch(bytes.data(), bytes.size(), grid, out);
+      ADD_FAILURE() << "residual " << residual << " accepted";
+    }
+    catch (const atp::PatchFormatError& e)
+    {
+      EXPECT_NE(std::string(e.what()).find("octahedral square"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// Normals that follow the surface cost a fraction of their 22 bits: the decoder predicts them
+// from the positions. The same normals shuffled among the vertices cost far more.
+TEST(PatchCodec, NormalsOfTheSurfaceArePredicted)
+{
+  const atp::QuantizationGrid grid = GridFor(0, 1);
+  atp::PatchMesh mesh = Terrain(0.25f, 0.5f, 0.25f, 40, false, 3);
+  const std::vector<std::uint8_t> surface = atp::EncodePatch(mesh, grid);
+  std::mt19937 random(8);
+  for (std::size_t v = mesh.VertexCount() - 1; v > 0; --v)
+  {
+    const std::size_t other = random() % (v + 1);
+    std::swap_ranges(&mesh.Normals[3 * v], &mesh.Normals[3 * v + 3], &mesh.Normals[3 * other]);
+  }
+  const std::vector<std::uint8_t> shuffled = atp::EncodePatch(mesh, grid);
+  const double surfacePerVertex = double(NormalStreamBytes(surface)) / double(mesh.VertexCount());
+  const double shuffledPerVertex = double(NormalStreamBytes(shuffled)) / double(mesh.VertexCount());
+  std::printf("normals: %.2f bytes per vertex on the surface, %.2f shuffled\n", surfacePerVertex,
+    shuffledPerVertex);
+  EXPECT_LT(surfacePerVertex, 1.0);
+  EXPECT_LT(surfacePerVertex * 2, shuffledPerVertex);
 }
 
 TEST(PatchCodec, HostileBytesThrowOrDecodeValid)
