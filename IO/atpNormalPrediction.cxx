@@ -5,12 +5,6 @@ namespace atp
 
 namespace
 {
-/// n / d rounded half away from zero, for d > 0 and |2n| + d below 2^31.
-std::int32_t RoundedQuotient(std::int32_t n, std::int32_t d)
-{
-  return n >= 0 ? (2 * n + d) / (2 * d) : -((2 * -n + d) / (2 * d));
-}
-
 std::uint64_t Magnitude(std::int64_t v)
 {
   return v < 0 ? 0 - std::uint64_t(v) : std::uint64_t(v);
@@ -19,6 +13,9 @@ std::uint64_t Magnitude(std::int64_t v)
 /// The number of bits up to the highest set one (0 for 0).
 int BitLength(std::uint64_t v)
 {
+#if defined(__GNUC__)
+  return v == 0 ? 0 : 64 - __builtin_clzll(v);
+#else
   int length = 0;
   for (int step = 32; step > 0; step /= 2)
   {
@@ -29,42 +26,57 @@ int BitLength(std::uint64_t v)
     }
   }
   return length + int(v != 0);
+#endif
 }
-} // namespace
 
-void OctahedralOfDirection(const std::int64_t direction[3], std::int32_t scale, std::int32_t out[2])
+/// OctahedralOfDirection, inlined where PredictNormals calls it once per vertex.
+inline void Octahedral(const std::int64_t direction[3], std::int32_t scale, std::int32_t out[2])
 {
-  // Magnitudes are cut to 19 bits, far more than an octahedral grid of 2^10 resolves, so that
-  // the rounding below stays within 32 bits.
-  const std::uint64_t magnitude[3] = { Magnitude(direction[0]), Magnitude(direction[1]),
-    Magnitude(direction[2]) };
-  const int length = BitLength(magnitude[0] | magnitude[1] | magnitude[2]);
-  const int shift = length > DirectionBits ? length - DirectionBits : 0;
-  std::int32_t n[3];
-  for (int a = 0; a < 3; ++a)
+  // Magnitudes are cut to DirectionBits bits, far more than an octahedral grid of 2^10
+  // resolves, so that the rounding below stays within 32 bits.
+  std::uint32_t cut[3];
   {
-    const std::int32_t cut = std::int32_t(magnitude[a] >> shift);
-    n[a] = direction[a] < 0 ? -cut : cut;
+    const std::uint64_t magnitude[3] = { Magnitude(direction[0]), Magnitude(direction[1]),
+      Magnitude(direction[2]) };
+    const int length = BitLength(magnitude[0] | magnitude[1] | magnitude[2]);
+    const int shift = length > DirectionBits ? length - DirectionBits : 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      cut[a] = std::uint32_t(magnitude[a] >> shift);
+    }
   }
-  const std::int32_t l1 = (n[0] < 0 ? -n[0] : n[0]) + (n[1] < 0 ? -n[1] : n[1]) + (n[2] < 0 ? -n[2] : n[2]);
+  // A component cut to 0 has no sign left.
+  const bool negative[3] = { direction[0] < 0 && cut[0] != 0, direction[1] < 0 && cut[1] != 0,
+    direction[2] < 0 && cut[2] != 0 };
+  const std::uint32_t l1 = cut[0] + cut[1] + cut[2];
   if (l1 == 0)
   {
     out[0] = out[1] = 0;
     return;
   }
-  std::int32_t x = RoundedQuotient(n[0] * scale, l1);
-  std::int32_t y = RoundedQuotient(n[1] * scale, l1);
-  if (n[2] < 0)
+  // |n| scale / l1 rounded half away from zero, on magnitudes.
+  const std::uint32_t u = scale;
+  const std::int32_t ax = std::int32_t((2 * cut[0] * u + l1) / (2 * l1));
+  const std::int32_t ay = std::int32_t((2 * cut[1] * u + l1) / (2 * l1));
+  if (negative[2])
   {
     // The lower hemisphere folds over the square's diagonals, as EncodeNormal folds it (the
     // side from the direction's own sign: a coordinate rounded to 0 may still be negative).
-    const std::int32_t fx = (scale - (y < 0 ? -y : y)) * (n[0] < 0 ? -1 : 1);
-    const std::int32_t fy = (scale - (x < 0 ? -x : x)) * (n[1] < 0 ? -1 : 1);
-    x = fx;
-    y = fy;
+    out[0] = negative[0] ? ay - scale : scale - ay;
+    out[1] = negative[1] ? ax - scale : scale - ax;
   }
-  out[0] = x;
-  out[1] = y;
+  else
+  {
+    out[0] = negative[0] ? -ax : ax;
+    out[1] = negative[1] ? -ay : ay;
+  }
+}
+
+} // namespace
+
+void OctahedralOfDirection(const std::int64_t direction[3], std::int32_t scale, std::int32_t out[2])
+{
+  Octahedral(direction, scale, out);
 }
 
 void PredictNormals(const std::vector<std::uint32_t>& indices, const std::int64_t* points,
@@ -98,7 +110,7 @@ void PredictNormals(const std::vector<std::uint32_t>& indices, const std::int64_
   {
     const std::int64_t direction[3] = { std::int64_t(sums[3 * v]), std::int64_t(sums[3 * v + 1]),
       std::int64_t(sums[3 * v + 2]) };
-    OctahedralOfDirection(direction, scale, out + 2 * v);
+    Octahedral(direction, scale, out + 2 * v);
   }
 }
 
