@@ -430,6 +430,32 @@ inline std::int64_t UnZigZag(std::uint32_t value)
   return std::int64_t(value >> 1) ^ -std::int64_t(value & 1);
 }
 
+// Byte-wise arithmetic on the 8 bytes of a word (SIMD within a register): no carry, borrow or
+// shifted bit crosses from one byte into the next.
+constexpr std::uint64_t HighBits = 0x8080808080808080ull, LowBits = 0x0101010101010101ull;
+
+inline std::uint64_t AddBytes(std::uint64_t a, std::uint64_t b)
+{
+  return ((a & ~HighBits) + (b & ~HighBits)) ^ ((a ^ b) & HighBits);
+}
+
+inline std::uint64_t SubtractBytes(std::uint64_t a, std::uint64_t b)
+{
+  return ((a | HighBits) - (b & ~HighBits)) ^ ((a ^ ~b) & HighBits);
+}
+
+/// Each byte's 8-bit zigzag code: (d << 1) ^ -(d >> 7).
+inline std::uint64_t ZigZagBytes(std::uint64_t d)
+{
+  return ((d << 1) & ~LowBits) ^ (((d >> 7) & LowBits) * 0xFF);
+}
+
+/// Each byte decoded from its 8-bit zigzag code: (z >> 1) ^ -(z & 1).
+inline std::uint64_t UnZigZagBytes(std::uint64_t z)
+{
+  return ((z >> 1) & ~HighBits) ^ ((z & LowBits) * 0xFF);
+}
+
 /// meshopt's vertex codec stores each byte of a vertex as the zigzag-coded difference from the
 /// same byte of the vertex before. Residuals of a prediction are already small and independent;
 /// differencing them again would double their spread. Storing each byte lane's running sum
@@ -437,40 +463,41 @@ inline std::int64_t UnZigZag(std::uint32_t value)
 template<std::size_t Stride>
 void SumByteLanes(std::uint8_t* data, std::size_t count)
 {
-  std::uint8_t sum[Stride] = {};
+  static_assert(Stride % 4 == 0, "records of whole 4-byte words");
+  constexpr std::size_t Words = (Stride + 7) / 8; // the last one half used when Stride % 8 = 4
+  std::uint64_t sum[Words] = {};
   for (std::size_t i = 0; i < count; ++i, data += Stride)
   {
-    for (std::size_t lane = 0; lane < Stride; ++lane)
+    for (std::size_t w = 0; w < Words; ++w)
     {
-      sum[lane] = std::uint8_t(sum[lane] + ((data[lane] >> 1) ^ (0u - (data[lane] & 1u))));
-      data[lane] = sum[lane];
+      const std::size_t bytes = std::min<std::size_t>(8, Stride - 8 * w);
+      std::uint64_t residuals = 0;
+      std::memcpy(&residuals, data + 8 * w, bytes);
+      sum[w] = AddBytes(sum[w], UnZigZagBytes(residuals));
+      std::memcpy(data + 8 * w, &sum[w], bytes);
     }
   }
 }
 
 /// Undoes SumByteLanes: each byte becomes the zigzag code of its difference from the byte
-/// Stride places before it. Eight bytes at a time (SIMD within a register: borrows and shifts
-/// kept inside each byte), from the end back, so every byte still reads an unchanged
-/// predecessor.
+/// Stride places before it. Eight bytes at a time from the end back, so every byte still reads
+/// an unchanged predecessor.
 template<std::size_t Stride>
 void DifferenceByteLanes(std::uint8_t* data, std::size_t count)
 {
-  constexpr std::uint64_t High = 0x8080808080808080ull, Low = 0x0101010101010101ull;
-  const auto zigzag8 = [](std::uint8_t d) { return std::uint8_t((d << 1) ^ (0u - (d >> 7))); };
-  const std::size_t bytes = count * Stride;
-  std::size_t end = bytes;
+  std::size_t end = count * Stride;
   for (; end >= Stride + 8; end -= 8)
   {
     std::uint64_t a, b;
     std::memcpy(&a, data + end - 8, 8);
     std::memcpy(&b, data + end - 8 - Stride, 8);
-    const std::uint64_t d = ((a | High) - (b & ~High)) ^ ((a ^ ~b) & High);
-    const std::uint64_t z = ((d << 1) & ~Low) ^ (((d >> 7) & Low) * 0xFF);
+    const std::uint64_t z = ZigZagBytes(SubtractBytes(a, b));
     std::memcpy(data + end - 8, &z, 8);
   }
   for (std::size_t j = end; j-- > 0;)
   {
-    data[j] = zigzag8(std::uint8_t(data[j] - (j >= Stride ? data[j - Stride] : 0)));
+    const std::uint64_t z = ZigZagBytes(SubtractBytes(data[j], j >= Stride ? data[j - Stride] : 0));
+    data[j] = std::uint8_t(z);
   }
 }
 } // namespace
