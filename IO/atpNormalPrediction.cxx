@@ -1,5 +1,8 @@
 #include "atpNormalPrediction.h"
 
+#include <stdexcept>
+#include <string>
+
 namespace atp
 {
 
@@ -72,16 +75,26 @@ inline void Octahedral(const std::int64_t direction[3], std::int32_t scale, std:
   }
 }
 
+void CheckScale(std::int32_t scale)
+{
+  if (scale < 1 || scale > MaxOctahedralScale)
+  {
+    throw std::invalid_argument("octahedral scale " + std::to_string(scale) + " outside 1.." +
+      std::to_string(MaxOctahedralScale));
+  }
+}
 } // namespace
 
 void OctahedralOfDirection(const std::int64_t direction[3], std::int32_t scale, std::int32_t out[2])
 {
+  CheckScale(scale);
   Octahedral(direction, scale, out);
 }
 
 void PredictNormals(const std::vector<std::uint32_t>& indices, const std::int64_t* points,
   std::size_t vertexCount, std::int32_t scale, std::int32_t* out)
 {
+  CheckScale(scale);
   // Unsigned arithmetic: wrapping is defined, so even sums a huge fan overflows agree.
   std::vector<std::uint64_t> sums(3 * vertexCount, 0);
   for (std::size_t t = 0; t + 2 < indices.size(); t += 3)

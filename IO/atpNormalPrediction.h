@@ -24,17 +24,18 @@ constexpr int DirectionBits = 19;
 /// The largest scale OctahedralOfDirection takes.
 constexpr std::int32_t MaxOctahedralScale = 1 << 10;
 
-/// Octahedral coordinates (the mapping of atpNormalEncoding.h) of the direction `direction`,
-/// scaled so that |x| + |y| = `scale` (up to rounding, half away from zero), `scale` at most
-/// MaxOctahedralScale. The components are first shifted right (magnitudes, signs kept) until
-/// all fit in DirectionBits bits. The zero vector gives +z, (0, 0).
+/// Octahedral coordinates (the mapping of atpNormalEncoding.h) of the direction `direction`, on
+/// the square [-scale, scale]^2 (rounded half away from zero), `scale` from 1 to
+/// MaxOctahedralScale (std::invalid_argument otherwise). The components are first shifted right
+/// (magnitudes, signs kept) until all fit in DirectionBits bits. The zero vector gives +z, (0, 0).
 VTKATPIO_EXPORT void OctahedralOfDirection(
   const std::int64_t direction[3], std::int32_t scale, std::int32_t out[2]);
 
 /// For each of `vertexCount` vertices, OctahedralOfDirection of the sum, over the triangles of
 /// `indices` that use it, of (b - a) x (c - a) for the triangle's grid points a, b, c (three
 /// per vertex in `points`, each below 2^26). Sums that leave 64 bits wrap around, the same way
-/// for encoder and decoder. Writes 2 x vertexCount values to `out`.
+/// for encoder and decoder. Writes 2 x vertexCount values to `out`. `scale` as for
+/// OctahedralOfDirection.
 VTKATPIO_EXPORT void PredictNormals(const std::vector<std::uint32_t>& indices,
   const std::int64_t* points, std::size_t vertexCount, std::int32_t scale, std::int32_t* out);
 

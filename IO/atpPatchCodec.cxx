@@ -23,7 +23,7 @@ constexpr std::size_t NormalStride = 2 * sizeof(std::int16_t);
 constexpr std::size_t ColorStride = 4;
 /// Normals are stored with NormalBits = 16 - NormalShift bits per octahedral coordinate.
 constexpr int NormalShift = 16 - NormalBits;
-/// The largest stored octahedral coordinate: |x| + |y| of a stored normal is about this.
+/// Stored octahedral coordinates lie in [-StoredNormalScale, StoredNormalScale].
 constexpr std::int32_t StoredNormalScale = 1 << (NormalBits - 1);
 // meshopt's index codec: a header byte, at least one code byte per triangle, a 16-byte tail.
 constexpr std::uint64_t IndexStreamOverhead = 17;
@@ -332,39 +332,21 @@ std::int16_t UnstoredNormal(std::int16_t stored)
   const int value = int(stored) * (1 << NormalShift);
   return static_cast<std::int16_t>(std::min(32767, std::max(-32767, value)));
 }
-/// The visited vertices that predict a vertex: the parallelogram a + b - c (Touma and Gotsman
-/// 1998) when C is set; else vertex A; else (A unset too: the walk's first vertex) nothing.
-struct Predictors
-{
-  static constexpr std::uint32_t None = ~0u;
-  std::uint32_t A = None, B = None, C = None;
-
-  /// The prediction of the attribute at values[Width * v + x], or `fallback` without A.
-  template<int Width, typename T, typename U>
-  void Predict(const T* values, const U* fallback, U* prediction) const
-  {
-    for (int x = 0; x < Width; ++x)
-    {
-      prediction[x] = C != None
-        ? U(values[Width * A + x]) + U(values[Width * B + x]) - U(values[Width * C + x])
-        : (A != None ? U(values[Width * A + x]) : fallback[x]);
-    }
-  }
-};
-
-/// The walk the encoder and decoder share: triangles in order; a vertex at its first use is
-/// predicted from vertices already visited: across the edge it faces, from the triangle on the
-/// other side if that one came earlier (parallelogram), else from a visited corner of its
-/// triangle, else from the last vertex visited. visit(v, predictors) returns false to stop the
-/// walk. Returns whether every vertex was visited.
+/// Parallelogram prediction (Touma and Gotsman 1998), the walk encoder and decoder share:
+/// triangles in order; a vertex at its first use is predicted from vertices already visited:
+/// across the edge it faces, from the triangle on the other side if that one came earlier
+/// (a + b - c), else from a visited corner of its triangle, else from the last vertex visited
+/// (`start` for the first). visit(v, prediction) must set q[v] (the encoder's are already
+/// there); it returns false to stop the walk. Returns whether every vertex was visited.
 template<typename Visit>
-bool PredictionWalk(const std::vector<std::uint32_t>& indices, std::size_t vertexCount, const Visit& visit)
+bool PredictionWalk(const std::vector<std::uint32_t>& indices, std::size_t vertexCount,
+  const std::uint32_t start[3], std::vector<std::int64_t>& q, const Visit& visit)
 {
   const EdgesByStart edges(indices, vertexCount);
   const std::size_t triangles = indices.size() / 3;
   std::vector<char> visited(vertexCount, 0);
   std::size_t visitedCount = 0;
-  std::uint32_t last = Predictors::None;
+  std::int64_t last[3] = { start[0], start[1], start[2] };
   for (std::size_t t = 0; t < triangles; ++t)
   {
     for (int k = 0; k < 3; ++k)
@@ -375,8 +357,7 @@ bool PredictionWalk(const std::vector<std::uint32_t>& indices, std::size_t verte
         continue;
       }
       const std::uint32_t a = indices[3 * t + (k + 1) % 3], b = indices[3 * t + (k + 2) % 3];
-      Predictors by;
-      by.A = last;
+      std::int64_t prediction[3] = { last[0], last[1], last[2] };
       std::uint32_t across = ~0u;
       if (visited[a] && visited[b])
       {
@@ -388,21 +369,30 @@ bool PredictionWalk(const std::vector<std::uint32_t>& indices, std::size_t verte
       if (across != ~0u)
       {
         const std::uint32_t* s = &indices[3 * std::size_t(across)];
-        by.A = a;
-        by.B = b;
-        by.C = s[0] != a && s[0] != b ? s[0] : (s[1] != a && s[1] != b ? s[1] : s[2]);
+        const std::uint32_t c = s[0] != a && s[0] != b ? s[0] : (s[1] != a && s[1] != b ? s[1] : s[2]);
+        for (int x = 0; x < 3; ++x)
+        {
+          prediction[x] = q[3 * a + x] + q[3 * b + x] - q[3 * c + x];
+        }
       }
       else if (visited[a] || visited[b])
       {
-        by.A = visited[a] ? a : b;
+        const std::uint32_t known = visited[a] ? a : b;
+        for (int x = 0; x < 3; ++x)
+        {
+          prediction[x] = q[3 * known + x];
+        }
       }
-      if (!visit(v, by))
+      if (!visit(v, prediction))
       {
         return false;
       }
       visited[v] = 1;
       ++visitedCount;
-      last = v;
+      for (int x = 0; x < 3; ++x)
+      {
+        last[x] = q[3 * v + x];
+      }
     }
   }
   return visitedCount == vertexCount;
@@ -619,11 +609,8 @@ std::vector<std::uint8_t> EncodePatch(const PatchMesh& mesh, const QuantizationG
     out.data() + PatchHeaderBytes, indexBytes);
   // Positions become residuals of their prediction; interior ones count coarse steps.
   std::vector<std::int64_t> q(positions.begin(), positions.end());
-  const std::int64_t start[3] = { header.Min[0], header.Min[1], header.Min[2] };
-  PredictionWalk(indices, used, [&](std::uint32_t v, const Predictors& by) {
+  PredictionWalk(indices, used, header.Min, q, [&](std::uint32_t v, const std::int64_t* prediction) {
     const int shift = v < header.BorderVertices ? 0 : header.InteriorShift;
-    std::int64_t prediction[3];
-    by.Predict<3>(q.data(), start, prediction);
     for (int a = 0; a < 3; ++a)
     {
       positions[3 * v + a] = ZigZag((q[3 * v + a] - RoundPrediction(prediction[a], shift)) >> shift);
@@ -710,12 +697,9 @@ void DecodePatch(
     DifferenceByteLanes<PositionStride>(reinterpret_cast<std::uint8_t*>(out.Positions.data()), vertexCount);
   }
   std::vector<std::int64_t> q(3 * vertexCount);
-  const std::int64_t start[3] = { h.Min[0], h.Min[1], h.Min[2] };
-  const bool inside = PredictionWalk(out.Indices, vertexCount,
-    [&](std::uint32_t v, const Predictors& by) {
+  const bool inside = PredictionWalk(out.Indices, vertexCount, h.Min, q,
+    [&](std::uint32_t v, const std::int64_t* prediction) {
       const int shift = v < h.BorderVertices ? 0 : h.InteriorShift;
-      std::int64_t prediction[3];
-      by.Predict<3>(q.data(), start, prediction);
       std::uint32_t residual[3];
       std::memcpy(residual, &out.Positions[3 * std::size_t(v)], sizeof(residual));
       for (int a = 0; a < 3; ++a)

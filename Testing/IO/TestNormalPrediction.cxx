@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <limits>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 namespace
@@ -69,6 +70,12 @@ TEST(NormalPrediction, OctahedralCoordinatesAgreeWithTheStoredEncoding)
   atp::OctahedralOfDirection(extreme, Scale, out);
   EXPECT_LE(std::abs(out[0]), Scale);
   EXPECT_LE(std::abs(out[1]), Scale);
+  // Scales past 2^10 would overflow the 32-bit rounding: refused.
+  for (const std::int32_t scale : { 0, -1, atp::MaxOctahedralScale + 1 })
+  {
+    EXPECT_THROW(atp::OctahedralOfDirection(extreme, scale, out), std::invalid_argument);
+    EXPECT_THROW(atp::PredictNormals({}, nullptr, 0, scale, out), std::invalid_argument);
+  }
 }
 
 // Construction gives each vertex the area-weighted sum of its faces' normals: on the same
