@@ -238,14 +238,13 @@ void ModelFile::ValidateHeader()
     Throw(Cat("made by a newer version ", h.Version, " of the format (this reader reads version ",
       ModelVersion, ")"));
   }
-  if (h.Version >= 1 && h.Version < ModelVersion)
+  if (h.Version >= 1 && h.Version < OldestReadableModelVersion)
   {
-    // Older versions encoded patches differently (16-bit normals; no position prediction;
-    // normals without prediction).
-    Throw(Cat("made by the older version ", h.Version, " of the format (this reader reads version ",
-      ModelVersion, "): build it again"));
+    // Versions 1 and 2 had another patch header (16-bit normals; no position prediction).
+    Throw(Cat("made by the older version ", h.Version, " of the format (this reader reads versions ",
+      OldestReadableModelVersion, " to ", ModelVersion, "): build it again"));
   }
-  if (h.Version != ModelVersion)
+  if (h.Version < OldestReadableModelVersion)
   {
     Throw(Cat("unknown format version ", h.Version));
   }

@@ -10,6 +10,9 @@ namespace atp
 
 constexpr char ModelMagic[8] = { 'A', 'T', 'P', 'M', 'O', 'D', 'E', 'L' };
 constexpr std::uint32_t ModelVersion = 4;
+/// The oldest version a reader still reads: version 3 differs only in its patches' encoding,
+/// which DecodePatch reads too.
+constexpr std::uint32_t OldestReadableModelVersion = 3;
 /// Written as a native uint32: reads back as this value only on a machine of the same byte order.
 constexpr std::uint32_t ModelByteOrderMark = 0x01020304u;
 constexpr std::uint32_t ModelFlagColors = 1u; ///< patches carry per-vertex RGBA colors

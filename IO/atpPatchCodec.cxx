@@ -123,10 +123,10 @@ PatchHeader ReadHeader(const std::uint8_t* p, std::size_t bytes)
     h.StreamBytes[s] = GetU32(p + StreamBytesOffset + 4 * s);
     streamTotal += h.StreamBytes[s];
   }
-  if (h.Version != PatchFormatVersion)
+  if (h.Version < OldestPatchFormatVersion || h.Version > PatchFormatVersion)
   {
     Fail("format version " + std::to_string(h.Version) + ", expected " +
-      std::to_string(PatchFormatVersion));
+      std::to_string(OldestPatchFormatVersion) + " to " + std::to_string(PatchFormatVersion));
   }
   if (h.Flags & ~PatchFlagColors)
   {
@@ -661,6 +661,8 @@ void DecodePatch(
 {
   const PatchHeader h = ReadHeader(data, bytes);
   const std::size_t vertexCount = h.VertexCount;
+  // Format 3 stored normals as they are, and both vertex streams without byte lanes.
+  const bool residualLanes = h.Version >= 4;
   const std::uint8_t* streams[StreamCount];
   streams[IndexStream] = data + PatchHeaderBytes;
   for (int s = 1; s < StreamCount; ++s)
@@ -694,7 +696,10 @@ void DecodePatch(
   {
     DecodeVertices(out.Positions.data(), vertexCount, PositionStride, streams[PositionStream],
       h.StreamBytes[PositionStream], "position");
-    DifferenceByteLanes<PositionStride>(reinterpret_cast<std::uint8_t*>(out.Positions.data()), vertexCount);
+    if (residualLanes)
+    {
+      DifferenceByteLanes<PositionStride>(reinterpret_cast<std::uint8_t*>(out.Positions.data()), vertexCount);
+    }
   }
   std::vector<std::int64_t> q(3 * vertexCount);
   const bool inside = PredictionWalk(out.Indices, vertexCount, h.Min, q,
@@ -734,18 +739,27 @@ void DecodePatch(
   {
     DecodeVertices(packed, vertexCount, NormalStride, streams[NormalStream],
       h.StreamBytes[NormalStream], "normal");
-    DifferenceByteLanes<NormalStride>(packed, vertexCount);
+    if (residualLanes)
+    {
+      DifferenceByteLanes<NormalStride>(packed, vertexCount);
+    }
   }
-  std::vector<std::int32_t> predicted(2 * vertexCount);
-  PredictNormals(out.Indices, q.data(), vertexCount, StoredNormalScale, predicted.data());
+  std::vector<std::int32_t> predicted(2 * vertexCount, 0);
+  if (residualLanes)
+  {
+    PredictNormals(out.Indices, q.data(), vertexCount, StoredNormalScale, predicted.data());
+  }
   for (std::size_t v = 0; v < vertexCount; ++v)
   {
     std::uint16_t residual[2];
+    std::int16_t value[2];
     std::memcpy(residual, packed + NormalStride * v, sizeof(residual));
+    std::memcpy(value, packed + NormalStride * v, sizeof(value));
     std::int16_t octahedral[2];
     for (int k = 0; k < 2; ++k)
     {
-      const std::int64_t stored = predicted[2 * v + k] + UnZigZag(residual[k]);
+      const std::int64_t stored =
+        residualLanes ? predicted[2 * v + k] + UnZigZag(residual[k]) : std::int64_t(value[k]);
       if (stored < -StoredNormalScale || stored > StoredNormalScale)
       {
         Fail("normal outside the octahedral square");

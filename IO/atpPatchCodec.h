@@ -36,6 +36,8 @@ namespace atp
 {
 
 constexpr std::uint8_t PatchFormatVersion = 4;
+/// DecodePatch also reads version 3: normals stored as they are (2 x i16), no byte lanes.
+constexpr std::uint8_t OldestPatchFormatVersion = 3;
 /// Bits per octahedral normal coordinate in the normal stream. 16 bits cost 0.7 bytes more
 /// per triangle (after compression) than 11 for no difference a display can show.
 constexpr int NormalBits = 11;

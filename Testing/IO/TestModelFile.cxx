@@ -4,13 +4,16 @@
 #include "atpModelFile.h"
 #include "atpModelFormat.h"
 #include "atpModelWriter.h"
+#include "atpPatchCodec.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -399,8 +402,8 @@ TEST(ModelFile, EveryValidationRuleHasItsOwnError)
       "bad byte-order mark 0x7" },
     { "newer version", Seal::All, [](H& h, N&, R&) { h.Version = 5; },
       "made by a newer version 5 of the format" },
-    { "older version", Seal::All, [](H& h, N&, R&) { h.Version = 3; },
-      "made by the older version 3 of the format (this reader reads version 4): build it again" },
+    { "older version", Seal::All, [](H& h, N&, R&) { h.Version = 2; },
+      "made by the older version 2 of the format (this reader reads versions 3 to 4): build it again" },
     { "version 0", Seal::All, [](H& h, N&, R&) { h.Version = 0; }, "unknown format version 0" },
     { "header size", Seal::All, [](H& h, N&, R&) { h.HeaderBytes = 400; },
       "header record of 400 bytes, expected 416" },
@@ -899,3 +902,101 @@ TEST(ModelWriter, LargePatchesBypassTheBuffer)
 }
 
 } // namespace
+
+// Models of format 3 (built before normals were predicted) still open and decode: every patch
+// decodes to the counts its node records, inside the sphere and face-normal cone construction
+// took from what the format-3 decoder gave back, and re-encoded in the current format it decodes to
+// the same positions and normals bit for bit.
+TEST(ModelFile, Format3ModelsStillRead)
+{
+  for (const char* name : { "small-4-levels.atp", "colors.atp" })
+  {
+    SCOPED_TRACE(name);
+    const ModelFile model = ModelFile::Open(std::string(ATP_TEST_DATA_DIR) + "/Format3/" + name);
+    ASSERT_EQ(model.Header().Version, 3u);
+    EXPECT_TRUE(model.Verify().empty());
+    const QuantizationGrid grid = model.PatchGrid();
+    PatchMesh mesh, again;
+    std::size_t decoded = 0, vertices = 0, alongSurface = 0;
+    for (std::size_t i = 0; i < model.Header().NodeCount; ++i)
+    {
+      const ModelNode& node = model.Node(i);
+      model.DecodePatch(i, mesh);
+      ASSERT_EQ(mesh.TriangleCount(), node.TriangleCount);
+      ASSERT_EQ(mesh.VertexCount(), node.VertexCount);
+      if (mesh.TriangleCount() == 0)
+      {
+        continue;
+      }
+      ++decoded;
+      for (std::size_t v = 0; v < mesh.VertexCount(); ++v)
+      {
+        const float* p = &mesh.Positions[3 * v];
+        const double distance = std::sqrt(double(p[0] - node.Sphere[0]) * (p[0] - node.Sphere[0]) +
+          double(p[1] - node.Sphere[1]) * (p[1] - node.Sphere[1]) +
+          double(p[2] - node.Sphere[2]) * (p[2] - node.Sphere[2]));
+        EXPECT_LE(distance, node.Sphere[3] * (1 + 1e-5) + 1e-6) << "node " << i << " vertex " << v;
+      }
+      std::vector<double> sums(mesh.Positions.size(), 0.0); // area-weighted, per vertex
+      for (std::size_t t = 0; t < mesh.TriangleCount(); ++t) // the cone holds face normals
+      {
+        const float* a = &mesh.Positions[3 * mesh.Indices[3 * t]];
+        const float* b = &mesh.Positions[3 * mesh.Indices[3 * t + 1]];
+        const float* c = &mesh.Positions[3 * mesh.Indices[3 * t + 2]];
+        const double u[3] = { double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2] };
+        const double w[3] = { double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2] };
+        const double n[3] = { u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0] };
+        const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        const double along =
+          (n[0] * node.ConeAxis[0] + n[1] * node.ConeAxis[1] + n[2] * node.ConeAxis[2]) / length;
+        EXPECT_GE(along, double(node.ConeCos) - 1e-5) << "node " << i << " triangle " << t;
+        for (int k = 0; k < 3; ++k)
+        {
+          for (int x = 0; x < 3; ++x)
+          {
+            sums[3 * mesh.Indices[3 * t + k] + x] += n[x];
+          }
+        }
+      }
+      // Vertex normals follow the surface the patch's triangles make (simplified patches carry
+      // the finer surface's, so only roughly).
+      for (std::size_t v = 0; v < mesh.VertexCount(); ++v)
+      {
+        const double* n = &sums[3 * v];
+        const float* stored = &mesh.Normals[3 * v];
+        const double along = (n[0] * stored[0] + n[1] * stored[1] + n[2] * stored[2]) /
+          std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        ++vertices;
+        alongSurface += along > 0.5;
+      }
+      // Interior shift as stored (header byte 26), so the current encoder rounds nothing more.
+      PatchPrecision precision;
+      precision.InteriorPositionShift = model.PatchData(i)[26];
+      const std::vector<std::uint8_t> bytes = EncodePatch(mesh, grid, precision);
+      ASSERT_EQ(bytes[0], PatchFormatVersion);
+      atp::DecodePatch(bytes.data(), bytes.size(), grid, again);
+      // The encoder orders vertices afresh; compare each triangle's corners.
+      ASSERT_EQ(again.TriangleCount(), mesh.TriangleCount());
+      std::vector<std::vector<float>> before, after;
+      for (const auto* m : { &mesh, &again })
+      {
+        auto& corners = m == &mesh ? before : after;
+        for (const std::uint32_t v : m->Indices)
+        {
+          std::vector<float> corner(m->Positions.begin() + 3 * v, m->Positions.begin() + 3 * v + 3);
+          corner.insert(corner.end(), m->Normals.begin() + 3 * v, m->Normals.begin() + 3 * v + 3);
+          corner.insert(corner.end(), m->Colors.begin() + (m->HasColors() ? 4 * v : 0),
+            m->Colors.begin() + (m->HasColors() ? 4 * v + 4 : 0));
+          corners.push_back(corner);
+        }
+      }
+      std::sort(before.begin(), before.end());
+      std::sort(after.begin(), after.end());
+      EXPECT_EQ(before, after) << "node " << i;
+    }
+    EXPECT_GT(decoded, 0u);
+    EXPECT_GE(alongSurface, vertices * 9 / 10);
+    std::printf("%s: %zu of %zu vertex normals within 60 degrees of their faces\n", name,
+      alongSurface, vertices);
+  }
+}
