@@ -295,7 +295,8 @@ std::vector<std::uint8_t> BorderVertices(
       for (const std::uint32_t x : { edges.End[e], third(a, e) })
       {
         // Without a branch: a neighbor is met once or twice in no order a predictor learns.
-        uses[x].Count = (uses[x].Around == a ? uses[x].Count : 0) + 1;
+        const std::uint32_t keep = 0u - std::uint32_t(uses[x].Around == a);
+        uses[x].Count = (uses[x].Count & keep) + 1;
         uses[x].Around = a;
       }
     }
