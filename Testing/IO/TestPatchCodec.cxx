@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <random>
 #include <string>
 #include <vector>
@@ -486,6 +487,103 @@ TEST(PatchCodec, CoarserInteriorKeepsTheBorderExactAndShrinks)
   EXPECT_GT(moved, decoded.VertexCount() / 2);
   coarse.InteriorPositionShift = -1;
   EXPECT_THROW(atp::EncodePatch(mesh, grid, coarse), std::invalid_argument);
+}
+
+/// The border vertex count a patch's header holds (docs/atp-format.md: bytes 22 to 25).
+std::uint32_t BorderCount(const std::vector<std::uint8_t>& bytes)
+{
+  std::uint32_t count;
+  std::memcpy(&count, &bytes[22], sizeof(count));
+  return count;
+}
+
+TEST(PatchCodec, BorderVerticesAreThoseOfEdgesUsedOnce)
+{
+  // A rough grid, whose outer ring is its border, with the irregular cases of a real patch
+  // inside: a triangle repeated and one reversed (edges used three times, or twice the same
+  // way: not border), a degenerate triangle on an interior edge, and a triangle hanging off one
+  // interior vertex by that vertex alone (its edges are used once: its corners are border).
+  // A triangle on the ring is reversed too: two of the ring's vertices then only have border
+  // edges that come in, or only ones that go out.
+  const int n = 20;
+  atp::PatchMesh mesh = Terrain(0.25f, 0.5f, 0.25f, n, false, 3);
+  Roughen(mesh, 1e-4f);
+  const auto triangle = [&](int i, int j, int half) { return 3 * std::size_t(2 * (j * n + i) + half); };
+  const std::size_t repeated = triangle(5, 5, 0), reversed = triangle(10, 10, 1);
+  const std::size_t degenerate = triangle(14, 6, 0), hanging = triangle(4, 15, 0);
+  mesh.Indices.insert(mesh.Indices.end(), &mesh.Indices[repeated], &mesh.Indices[repeated] + 3);
+  for (const std::size_t t : { reversed, triangle(0, 10, 1) })
+  {
+    std::swap(mesh.Indices[t + 1], mesh.Indices[t + 2]);
+  }
+  const std::uint32_t a = mesh.Indices[degenerate], b = mesh.Indices[degenerate + 1];
+  mesh.Indices.insert(mesh.Indices.end(), { a, a, b });
+  const std::uint32_t hub = mesh.Indices[hanging];
+  const std::uint32_t first = std::uint32_t(mesh.VertexCount());
+  for (const float dx : { 0.01f, 0.02f })
+  {
+    const float* p = &mesh.Positions[3 * std::size_t(hub)];
+    mesh.Positions.insert(mesh.Positions.end(), { p[0] + dx, p[1] + 0.005f, p[2] + 0.05f });
+    mesh.Normals.insert(mesh.Normals.end(), { 0.0f, 0.0f, 1.0f });
+  }
+  mesh.Indices.insert(mesh.Indices.end(), { hub, first, first + 1 });
+
+  // The rule written down again: a vertex is border when an edge from it to another vertex is
+  // used by one triangle in all, whichever way.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  for (std::size_t t = 0; t < mesh.TriangleCount(); ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t u = mesh.Indices[3 * t + k], v = mesh.Indices[3 * t + (k + 1) % 3];
+      if (u != v)
+      {
+        ++uses[{ std::min(u, v), std::max(u, v) }];
+      }
+    }
+  }
+  std::vector<bool> border(mesh.VertexCount(), false);
+  for (const auto& [edge, count] : uses)
+  {
+    if (count == 1)
+    {
+      border[edge.first] = border[edge.second] = true;
+    }
+  }
+  const std::size_t expected = std::size_t(std::count(border.begin(), border.end(), true));
+  ASSERT_EQ(expected, std::size_t(4 * n + 3)) << "the ring and the hanging triangle";
+  ASSERT_FALSE(border[a] || border[b]);
+
+  const atp::QuantizationGrid grid = GridFor(0, 1);
+  atp::PatchPrecision coarse;
+  coarse.InteriorPositionShift = 12;
+  const std::vector<std::uint8_t> bytes = atp::EncodePatch(mesh, grid, coarse);
+  EXPECT_EQ(BorderCount(bytes), expected);
+  const std::vector<std::uint8_t> exact = atp::EncodePatch(mesh, grid);
+  atp::PatchMesh decoded, lossless;
+  atp::DecodePatch(bytes.data(), bytes.size(), grid, decoded);
+  atp::DecodePatch(exact.data(), exact.size(), grid, lossless);
+  ASSERT_EQ(decoded.Indices, lossless.Indices);
+  // Each decoded vertex is the input vertex nearest its lossless position: border ones keep
+  // their position exactly on the coarser grid, the others all move.
+  for (std::size_t v = 0; v < lossless.VertexCount(); ++v)
+  {
+    const float* p = &lossless.Positions[3 * v];
+    std::size_t input = 0;
+    double nearest = INFINITY;
+    for (std::size_t w = 0; w < mesh.VertexCount(); ++w)
+    {
+      const float* q = &mesh.Positions[3 * w];
+      const double d = std::hypot(double(p[0] - q[0]), double(p[1] - q[1]), double(p[2] - q[2]));
+      if (d < nearest)
+      {
+        nearest = d;
+        input = w;
+      }
+    }
+    const bool same = std::equal(p, p + 3, &decoded.Positions[3 * v]);
+    EXPECT_EQ(same, bool(border[input])) << "vertex " << input;
+  }
 }
 
 TEST(PatchCodec, EmptyPatch)
