@@ -375,7 +375,8 @@ bool PredictionWalk(const std::vector<std::uint32_t>& indices, std::size_t verte
       if (visited[a] && visited[b])
       {
         const std::uint32_t tableA = tableVertex(a), tableB = tableVertex(b);
-        for (std::uint32_t e = edges.First[tableB]; e < edges.First[tableB + 1] && across == ~0u; ++e)
+        const std::uint32_t last = edges.First[tableB + 1];
+        for (std::uint32_t e = edges.First[tableB]; e < last && across == ~0u; ++e)
         {
           across = edges.End[e] == tableA && edges.Triangle[e] < t ? edges.Triangle[e] : ~0u;
         }
@@ -626,14 +627,17 @@ std::vector<std::uint8_t> EncodePatch(const PatchMesh& mesh, const QuantizationG
     out.data() + PatchHeaderBytes, indexBytes);
   // Positions become residuals of their prediction; interior ones count coarse steps.
   std::vector<std::int64_t> q(positions.begin(), positions.end());
-  PredictionWalk(indices, used, edges, [&](std::uint32_t v) { return numberedFrom[v]; }, header.Min, q, [&](std::uint32_t v, const std::int64_t* prediction) {
-    const int shift = v < header.BorderVertices ? 0 : header.InteriorShift;
-    for (int a = 0; a < 3; ++a)
-    {
-      positions[3 * v + a] = ZigZag((q[3 * v + a] - RoundPrediction(prediction[a], shift)) >> shift);
-    }
-    return true;
-  });
+  const auto tableVertex = [&](std::uint32_t v) { return numberedFrom[v]; };
+  PredictionWalk(indices, used, edges, tableVertex, header.Min, q,
+    [&](std::uint32_t v, const std::int64_t* prediction) {
+      const int shift = v < header.BorderVertices ? 0 : header.InteriorShift;
+      for (int a = 0; a < 3; ++a)
+      {
+        positions[3 * v + a] =
+          ZigZag((q[3 * v + a] - RoundPrediction(prediction[a], shift)) >> shift);
+      }
+      return true;
+    });
   SumByteLanes<PositionStride>(reinterpret_cast<std::uint8_t*>(positions.data()), used);
   // Normals become residuals of their prediction from the (decoded) geometry.
   std::vector<std::int32_t> predicted(2 * used);
@@ -719,8 +723,9 @@ void DecodePatch(
     }
   }
   std::vector<std::int64_t> q(3 * vertexCount);
-  const bool inside = PredictionWalk(out.Indices, vertexCount, EdgesByStart(out.Indices, vertexCount),
-    [](std::uint32_t v) { return v; }, h.Min, q,
+  const auto sameVertex = [](std::uint32_t v) { return v; };
+  const bool inside = PredictionWalk(out.Indices, vertexCount,
+    EdgesByStart(out.Indices, vertexCount), sameVertex, h.Min, q,
     [&](std::uint32_t v, const std::int64_t* prediction) {
       const int shift = v < h.BorderVertices ? 0 : h.InteriorShift;
       std::uint32_t residual[3];
