@@ -290,18 +290,22 @@ private:
   /// many again: what collapses leave behind is reclaimed, so a vertex that keeps absorbing
   /// its neighbors (its whole fan written anew each time) cannot grow the pool without bound.
   void CompactCorners(std::size_t extra);
-  /// Appends the corners of `run` whose triangles are live to `out` (with room for them when
-  /// `out` is the pool itself, which then must not reallocate under the reads).
+  /// Appends the corners of `run` whose triangles are live to `out` (with room for all of
+  /// run's corners when `out` is the pool itself, which then must not reallocate under the
+  /// reads).
   void AppendLiveCorners(FanSlice run, std::vector<std::uint32_t>& out) const
   {
+    // Every corner written, only live ones kept (as GatherFan): which triangles a collapse just
+    // removed from the fans it joins follows no pattern.
+    std::size_t live = out.size();
+    out.resize(live + run.Count);
     for (std::uint32_t i = run.Start; i < run.Start + run.Count; ++i)
     {
       const std::uint32_t c = Corners[i];
-      if (!Faces[TriangleOf(c)].Removed)
-      {
-        out.push_back(c);
-      }
+      out[live] = c;
+      live += std::size_t(!Faces[TriangleOf(c)].Removed);
     }
+    out.resize(live);
   }
   void FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, std::uint32_t w);
   int RegionOf(const double point[3], int likely) const;
