@@ -1212,8 +1212,10 @@ void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
 {
   for (std::uint32_t c : Fan)
   {
+    // Only a removed triangle with an open edge has one to carry; most have none, which is
+    // asked first (which of the fan's triangles are removed follows no pattern).
     const std::uint32_t t = TriangleOf(c);
-    if (Contains(t, v))
+    if (Faces[t].Bits != 0 && Contains(t, v))
     {
       const std::uint32_t* tri = Faces[t].V;
       const std::uint32_t w = tri[0] != u && tri[0] != v ? tri[0] : (tri[1] != u && tri[1] != v ? tri[1] : tri[2]);
@@ -1222,17 +1224,16 @@ void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
   }
   for (std::size_t i = 0; i < Fan.size(); ++i)
   {
+    // Removed or moved, without a branch: a removed triangle keeps its corner and region and
+    // adds nothing back.
     const std::uint32_t c = Fan[i];
     const std::uint32_t t = TriangleOf(c);
+    const bool removed = MovedRegions[i] < 0;
     CountTriangles(Faces[t].Region, -1);
-    if (MovedRegions[i] < 0)
-    {
-      Faces[t].Removed = 1;
-      continue;
-    }
-    VertexAt(c) = v;
-    Faces[t].Region = MovedRegions[i];
-    CountTriangles(MovedRegions[i], 1);
+    Faces[t].Removed = std::uint8_t(removed);
+    VertexAt(c) = removed ? u : v;
+    Faces[t].Region = removed ? Faces[t].Region : MovedRegions[i];
+    CountTriangles(Faces[t].Region, std::int64_t(!removed));
   }
   // v's new fan: u's moved corners, then v's own. Compacting moves u's run: Fan is not read
   // after it.
