@@ -11,13 +11,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 what=${1:-brain}
-scratch=${2:-$(mktemp -d /tmp/atp-bench.XXXXXX)}
 source bench/common.sh
+scratch_dir "${2:-}"
 input_path "$what" "$scratch"
 cleanup() {
   [ "$input" = "$what" ] || rm -f "$input"
-  rm -f "$scratch/model.atp" "$scratch/df.log"
-  [ -n "${2:-}" ] || rmdir "$scratch" 2>/dev/null || true
+  remove_scratch "$scratch/model.atp" "$scratch/df.log"
 }
 trap cleanup EXIT
 

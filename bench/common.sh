@@ -3,6 +3,26 @@
 # isosurface of ch2better.nii.gz from mricron-data at 60, resampled 2x: 9.1M triangles), a
 # triangle count (a generated bumpy torus of at least that many) or a mesh file.
 
+# scratch_dir GIVEN [PREFIX]: sets $scratch to GIVEN, made if missing and kept afterwards, or
+# without GIVEN to a new directory under /tmp (named PREFIX.XXXXXX, atp-bench by default), which
+# remove_scratch then removes.
+scratch_dir() {
+  if [ -n "$1" ]; then
+    scratch=$1
+    mkdir -p "$scratch"
+    own_scratch=
+  else
+    scratch=$(mktemp -d "/tmp/${2:-atp-bench}.XXXXXX")
+    own_scratch=1
+  fi
+}
+
+# remove_scratch FILE...: removes the files, then the scratch directory if scratch_dir made it.
+remove_scratch() {
+  rm -f "$@"
+  [ -z "$own_scratch" ] || rmdir "$scratch" 2>/dev/null || true
+}
+
 # input_path WHAT SCRATCH: sets $input, WHAT itself for a file, else input.ply in SCRATCH.
 input_path() {
   input=$2/input.ply

@@ -9,13 +9,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 what=${1:-brain}
-scratch=${2:-$(mktemp -d /tmp/atp-bench-mpi.XXXXXX)}
 source bench/common.sh
+scratch_dir "${2:-}" atp-bench-mpi
 input_path "$what" "$scratch"
 cleanup() {
   [ "$input" = "$what" ] || rm -f "$input"
-  rm -f "$scratch"/threads-*.atp "$scratch"/mpi-*.atp "$scratch"/run.log "$scratch"/time.log
-  [ -n "${2:-}" ] || rmdir "$scratch" 2>/dev/null || true
+  remove_scratch "$scratch"/threads-*.atp "$scratch"/mpi-*.atp "$scratch"/run.log "$scratch"/time.log
 }
 trap cleanup EXIT
 

@@ -9,12 +9,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 triangles=${1:-50000000}
-scratch=${2:-$(mktemp -d /tmp/atp-bench.XXXXXX)}
-cleanup() { rm -f "$scratch/bench.ply"; [ -n "${2:-}" ] || rmdir "$scratch" 2>/dev/null || true; }
+source bench/common.sh
+scratch_dir "${2:-}"
+cleanup() { remove_scratch "$scratch/bench.ply"; }
 trap cleanup EXIT
 
 [ -x build/bin/atp ] && [ -x build/bin/atp-bench-partition ] || bash scripts/build.sh
-source bench/common.sh
 machine
 build/bin/atp generate -n "$triangles" -o "$scratch/bench.ply"
 ls -l "$scratch/bench.ply" | awk '{printf "input: %.0f MiB binary PLY\n", $5/1048576}'

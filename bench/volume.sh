@@ -8,12 +8,12 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 n=${1:-800}
 slab=${2:-64}
-scratch=${3:-$(mktemp -d /tmp/atp-bench.XXXXXX)}
-cleanup() { rm -f "$scratch/volume.raw" "$scratch/model.atp"; [ -n "${3:-}" ] || rmdir "$scratch" 2>/dev/null || true; }
+source bench/common.sh
+scratch_dir "${3:-}"
+cleanup() { remove_scratch "$scratch/volume.raw" "$scratch/model.atp"; }
 trap cleanup EXIT
 
 [ -x build/bin/atp ] && [ -x build/bin/atp-bench-volume ] || bash scripts/build.sh
-source bench/common.sh
 machine
 build/bin/atp-bench-volume "$scratch/volume.raw" "$n"
 /usr/bin/time -f "time: %e s wall, %U s user, peak resident %M KiB" \
