@@ -375,8 +375,8 @@ bool PredictionWalk(const std::vector<std::uint32_t>& indices, std::size_t verte
       if (visited[a] && visited[b])
       {
         const std::uint32_t tableA = tableVertex(a), tableB = tableVertex(b);
-        const std::uint32_t last = edges.First[tableB + 1];
-        for (std::uint32_t e = edges.First[tableB]; e < last && across == ~0u; ++e)
+        const std::uint32_t groupEnd = edges.First[tableB + 1];
+        for (std::uint32_t e = edges.First[tableB]; e < groupEnd && across == ~0u; ++e)
         {
           across = edges.End[e] == tableA && edges.Triangle[e] < t ? edges.Triangle[e] : ~0u;
         }
