@@ -134,6 +134,9 @@ int Build(int argc, char** argv, atp::MpiJobRunner* workers)
   cl.AddOption("leaf-capacity", "", "N", "most triangles in a leaf tetrahedron", "4000");
   cl.AddOption("patch-budget", "", "N", "most triangles in a tetrahedron of a simplified level (it also keeps at most half of its children's)",
     "2000");
+  cl.AddFlag("fast-cache-order",
+    "order triangles with meshoptimizer's FIFO vertex-cache optimizer: a build about 12% faster, "
+    "a model about 6% larger");
   cl.AddOption("threads", "j", "N", "worker threads (the model is identical for any count)",
     "every core");
   cl.AddOption("bucket-memory", "", "MiB", "memory for in-memory triangle buckets", "256");
@@ -157,6 +160,7 @@ int Build(int argc, char** argv, atp::MpiJobRunner* workers)
   builder->SetFileName(cl.Get("output").c_str());
   builder->SetLeafCapacity(int(cl.GetInteger("leaf-capacity", 1, 1 << 30)));
   builder->SetPatchBudget(int(cl.GetInteger("patch-budget", 16, 1 << 20)));
+  builder->SetFastCacheOrder(cl.Has("fast-cache-order"));
   if (cl.Has("threads"))
   {
     builder->SetNumberOfThreads(int(cl.GetInteger("threads", 1, 1024)));

@@ -52,12 +52,14 @@ int InfoCommand(const std::vector<std::string>& arguments)
   const std::map<int, LevelFigures> levels = Levels(model);
   const double perTriangle = double(h.FileBytes) / double(std::max<std::uint64_t>(1, h.InputTriangles));
   const bool colors = (h.Flags & ModelFlagColors) != 0;
+  const char* cacheOrder = (h.Flags & ModelFlagFastCacheOrder) ? "fast" : "best";
   if (cl.Has("json"))
   {
     std::printf("{\"file\": \"%s\", \"version\": %u, \"bytes\": %llu, \"nodes\": %llu, "
                 "\"levels\": %u, \"input_triangles\": %llu, \"input_boundary_edges\": %llu, "
                 "\"colors\": %s, \"stored_triangles\": %llu, \"bytes_per_input_triangle\": %.3f, "
-                "\"leaf_capacity\": %u, \"patch_budget\": %u, \"error_scale\": %g, "
+                "\"leaf_capacity\": %u, \"patch_budget\": %u, \"cache_order\": \"%s\", "
+                "\"error_scale\": %g, "
                 "\"box_min\": [%.9g, %.9g, %.9g], \"box_max\": [%.9g, %.9g, %.9g], "
                 "\"quantization_step\": %.9g, \"per_level\": [",
       cl.Positional(0).c_str(), h.Version, static_cast<unsigned long long>(h.FileBytes),
@@ -65,8 +67,8 @@ int InfoCommand(const std::vector<std::string>& arguments)
       static_cast<unsigned long long>(h.InputTriangles),
       static_cast<unsigned long long>(h.InputBoundaryEdges), colors ? "true" : "false",
       static_cast<unsigned long long>(h.StoredTriangles), perTriangle, h.LeafCapacity,
-      h.PatchBudget, double(h.ErrorScale), h.BoxMin[0], h.BoxMin[1], h.BoxMin[2], h.BoxMax[0],
-      h.BoxMax[1], h.BoxMax[2], h.QuantizationStep);
+      h.PatchBudget, cacheOrder, double(h.ErrorScale), h.BoxMin[0], h.BoxMin[1], h.BoxMin[2],
+      h.BoxMax[0], h.BoxMax[1], h.BoxMax[2], h.QuantizationStep);
     const char* separator = "";
     for (const auto& [level, l] : levels)
     {
@@ -91,8 +93,9 @@ int InfoCommand(const std::vector<std::string>& arguments)
               "bytes/input triangle\n",
     static_cast<unsigned long long>(h.NodeCount), h.Depth + 1,
     FormatCount(double(h.StoredTriangles)).c_str(), perTriangle);
-  std::printf("options: leaf capacity %u, patch budget %u, error scale %g, quantization step %g\n",
-    h.LeafCapacity, h.PatchBudget, double(h.ErrorScale), h.QuantizationStep);
+  std::printf("options: leaf capacity %u, patch budget %u, %s cache order, error scale %g, "
+              "quantization step %g\n",
+    h.LeafCapacity, h.PatchBudget, cacheOrder, double(h.ErrorScale), h.QuantizationStep);
   std::printf("%6s %10s %12s %12s %16s\n", "level", "nodes", "triangles", "bytes", "saturated error");
   for (const auto& [level, l] : levels)
   {

@@ -85,7 +85,7 @@ public:
     , Input(input)
     , Options(options)
     , Progress(progress)
-    , Context(bounds, options.PatchBudget, input.HasColors)
+    , Context(bounds, options.PatchBudget, input.HasColors, options.Order)
     , OwnRunner(options.Runner ? nullptr : MakeThreadJobRunner(options.Threads))
     , Runner(options.Runner ? *options.Runner : *OwnRunner)
     , Intermediate(options.ScratchDirectory)
@@ -520,7 +520,8 @@ private:
     header.PatchBudget = Options.PatchBudget;
     header.Depth = std::uint32_t(Forest.Depth());
     header.ErrorScale = Options.ErrorScale;
-    header.Flags = Input.HasColors ? ModelFlagColors : 0;
+    header.Flags = (Input.HasColors ? ModelFlagColors : 0) |
+      (Options.Order == CacheOrder::Fast ? ModelFlagFastCacheOrder : 0);
     writer.Commit(header);
 
     Stats.Nodes = Forest.Size();

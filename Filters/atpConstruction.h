@@ -6,6 +6,7 @@
 #define atpConstruction_h
 
 #include "atpPartitioner.h"
+#include "atpPatchCodec.h"
 #include "vtkATPFiltersModule.h"
 
 #include <cstdint>
@@ -27,6 +28,8 @@ struct ConstructionOptions
   std::string ScratchDirectory;
   /// Stored in the model: screen-space error = ErrorScale * projected object-space error.
   float ErrorScale = 1;
+  /// How patches order their triangles for the vertex cache (ModelFlagFastCacheOrder).
+  CacheOrder Order = CacheOrder::Best;
 };
 
 /// CPU seconds by step of construction. The jobs' steps are summed over every job, wherever it

@@ -32,10 +32,10 @@ PatchPrecision PrecisionFor(const QuantizationGrid& grid, double error)
 
 /// Encodes the patch; its sphere and cone bound what a reader decodes (quantized), not the
 /// mesh before encoding.
-void Finish(MadePatch& made, const QuantizationGrid& grid, const PatchPrecision& precision)
+void Finish(MadePatch& made, const PatchJobContext& context, const PatchPrecision& precision)
 {
   PatchMesh decoded;
-  made.Encoded = EncodePatch(made.Mesh, grid, precision, &decoded);
+  made.Encoded = EncodePatch(made.Mesh, context.Grid, precision, &decoded, context.Order);
   made.Tight = EnclosingSphere(decoded.Positions.data(), decoded.VertexCount());
   made.Cone = FaceNormalCone(decoded);
 }
@@ -92,7 +92,7 @@ PatchJobResult MakeLeafPatch(const PatchJobContext& context, const PatchJob& job
   result.Patches.resize(1);
   result.Patches[0].Mesh = WeldSoup(job.Soup, context.Colors);
   lap.Lap(result.Cpu.Prepare);
-  Finish(result.Patches[0], context.Grid, PrecisionFor(context.Grid, 0));
+  Finish(result.Patches[0], context, PrecisionFor(context.Grid, 0));
   lap.Lap(result.Cpu.Encode);
   return result;
 }
@@ -130,7 +130,7 @@ PatchJobResult SimplifyDiamond(const PatchJobContext& context, PatchJob& job)
   for (std::size_t i = 0; i < job.Members.size(); ++i)
   {
     result.Patches[i].Mesh = std::move(simplified.Regions[i]);
-    Finish(result.Patches[i], context.Grid, precision);
+    Finish(result.Patches[i], context, precision);
   }
   lap.Lap(result.Cpu.Encode);
   return result;
@@ -158,10 +158,12 @@ DiamondQuotas QuotasOf(const PatchJob& job, std::uint32_t budget)
   return quotas;
 }
 
-PatchJobContext::PatchJobContext(const Box& bounds, std::uint32_t patchBudget, bool colors)
+PatchJobContext::PatchJobContext(
+  const Box& bounds, std::uint32_t patchBudget, bool colors, CacheOrder order)
   : Bounds(bounds)
   , PatchBudget(patchBudget)
   , Colors(colors)
+  , Order(order)
   , Grid(QuantizationGrid::ForBounds(bounds.Min.data(), bounds.Max.data()))
   , Frame(bounds.Min.data(), bounds.Max.data())
 {

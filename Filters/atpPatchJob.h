@@ -7,6 +7,7 @@
 #define atpPatchJob_h
 
 #include "atpBounds.h"
+#include "atpPatchCodec.h"
 #include "atpPatchMesh.h"
 #include "atpQuantizationGrid.h"
 #include "atpTetra.h"
@@ -20,17 +21,19 @@
 namespace atp
 {
 
-/// What every job of one build shares; it follows from the input bounds and two options, which
-/// is all that travels to another process.
+/// What every job of one build shares; it follows from the input bounds and three options,
+/// which is all that travels to another process.
 struct VTKATPFILTERS_EXPORT PatchJobContext
 {
-  PatchJobContext(const Box& bounds, std::uint32_t patchBudget, bool colors);
+  PatchJobContext(const Box& bounds, std::uint32_t patchBudget, bool colors, CacheOrder order);
 
   Box Bounds;
   /// Most triangles a member of a simplified diamond keeps.
   std::uint32_t PatchBudget;
   /// Whether patches keep vertex colors (the input has them).
   bool Colors;
+  /// How every patch's triangles are ordered for the vertex cache.
+  CacheOrder Order;
   QuantizationGrid Grid; ///< the model's one position grid
   LatticeFrame Frame;    ///< the partition's lattice, which places points in members
 };

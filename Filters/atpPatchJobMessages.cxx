@@ -12,8 +12,9 @@ namespace
 /// The messages' version: one more whenever a message gains, loses or widens a field (the
 /// sizes of the shipped types count themselves). 1: the first; 2: a result carries the
 /// triangles over its quotas instead of a flag; 3: and the closed pieces removed; 4: and the
-/// CPU time of its steps. TestPatchJob pins a result message's size.
-constexpr std::uint64_t MessageVersion = 4;
+/// CPU time of its steps; 5: the context carries the cache order. TestPatchJob pins a result
+/// message's size.
+constexpr std::uint64_t MessageVersion = 5;
 static_assert(sizeof(JobCpuSeconds) == 3 * sizeof(double),
   "a step added to JobCpuSeconds changes the result message: bump MessageVersion");
 
@@ -126,6 +127,11 @@ public:
     return std::size_t(count);
   }
 
+  [[noreturn]] void Fail() const
+  {
+    throw std::runtime_error(std::string("malformed ") + What + " message");
+  }
+
   void ExpectEnd() const
   {
     if (Next != End)
@@ -148,11 +154,6 @@ private:
     Next += bytes;
   }
 
-  [[noreturn]] void Fail() const
-  {
-    throw std::runtime_error(std::string("malformed ") + What + " message");
-  }
-
   const std::uint8_t* Next;
   const std::uint8_t* End;
   const char* What;
@@ -171,6 +172,7 @@ std::vector<std::uint8_t> EncodeContext(const PatchJobContext& context)
   w.Put(context.Bounds);
   w.Put(context.PatchBudget);
   w.Put(std::uint8_t(context.Colors));
+  w.Put(std::uint8_t(context.Order));
   return out;
 }
 
@@ -185,8 +187,13 @@ PatchJobContext DecodeContext(const std::uint8_t* data, std::size_t bytes)
   const auto bounds = r.Get<Box>();
   const auto budget = r.Get<std::uint32_t>();
   const auto colors = r.Get<std::uint8_t>();
+  const auto order = r.Get<std::uint8_t>();
   r.ExpectEnd();
-  return PatchJobContext(bounds, budget, colors != 0);
+  if (order > std::uint8_t(CacheOrder::Fast))
+  {
+    r.Fail();
+  }
+  return PatchJobContext(bounds, budget, colors != 0, CacheOrder(order));
 }
 
 void EncodeJob(const PatchJob& job, std::vector<std::uint8_t>& out)

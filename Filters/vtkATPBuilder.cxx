@@ -154,6 +154,7 @@ int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, v
 
     atp::ConstructionOptions construction;
     construction.PatchBudget = std::uint32_t(this->PatchBudget);
+    construction.Order = this->FastCacheOrder ? atp::CacheOrder::Fast : atp::CacheOrder::Best;
     construction.Threads = this->NumberOfThreads;
     construction.Runner = this->JobRunner;
     construction.ScratchDirectory = scratch;
@@ -283,6 +284,7 @@ void vtkATPBuilder::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RawVolumeLayout: " << (this->RawLayout ? "set" : "(none)") << "\n";
   os << indent << "LeafCapacity: " << this->LeafCapacity << "\n";
   os << indent << "PatchBudget: " << this->PatchBudget << "\n";
+  os << indent << "FastCacheOrder: " << (this->FastCacheOrder ? "on" : "off") << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "JobRunner: " << (this->JobRunner ? "external" : "threads") << "\n";
   os << indent << "BucketMemoryMiB: " << this->BucketMemoryMiB << "\n";

@@ -85,6 +85,15 @@ public:
   ///@}
 
   ///@{
+  /// Orders each patch's triangles with meshoptimizer's FIFO vertex-cache optimizer instead of
+  /// its default one (default off): the build takes about 12% less time, the model about 6% more
+  /// bytes and decoding it about 8% more time (docs/construction.md).
+  vtkSetMacro(FastCacheOrder, bool);
+  vtkGetMacro(FastCacheOrder, bool);
+  vtkBooleanMacro(FastCacheOrder, bool);
+  ///@}
+
+  ///@{
   /// Worker threads for simplification and encoding (default 0: every core). The model is
   /// byte-identical whatever the count.
   vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
@@ -158,6 +167,7 @@ protected:
   int SlabSlices;
   int LeafCapacity = 4000;
   int PatchBudget = 2000;
+  bool FastCacheOrder = false;
   int NumberOfThreads = 0;
   int BucketMemoryMiB = 256;
   atp::PatchJobRunner* JobRunner = nullptr;

@@ -16,6 +16,9 @@ constexpr std::uint32_t OldestReadableModelVersion = 3;
 /// Written as a native uint32: reads back as this value only on a machine of the same byte order.
 constexpr std::uint32_t ModelByteOrderMark = 0x01020304u;
 constexpr std::uint32_t ModelFlagColors = 1u; ///< patches carry per-vertex RGBA colors
+/// Patches were ordered for the vertex cache by meshoptimizer's FIFO optimizer (CacheOrder::Fast),
+/// which builds faster; a reader needs nothing from it.
+constexpr std::uint32_t ModelFlagFastCacheOrder = 2u;
 
 /// At offset 0. Sections follow at the offsets it gives, each aligned to 64 bytes.
 struct ModelHeader

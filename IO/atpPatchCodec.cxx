@@ -516,7 +516,7 @@ double PatchPrecision::PositionError(const QuantizationGrid& grid) const
 }
 
 std::vector<std::uint8_t> EncodePatch(const PatchMesh& mesh, const QuantizationGrid& grid,
-  const PatchPrecision& precision, PatchMesh* decoded)
+  const PatchPrecision& precision, PatchMesh* decoded, CacheOrder order)
 {
   CheckMesh(mesh);
   if (precision.InteriorPositionShift < 0 || precision.InteriorPositionShift >= QuantizationGrid::Bits)
@@ -545,7 +545,15 @@ std::vector<std::uint8_t> EncodePatch(const PatchMesh& mesh, const QuantizationG
   // index codec already stores lists in ~1.2 bytes per triangle.
   const std::size_t vertexCount = mesh.VertexCount();
   std::vector<std::uint32_t> indices(indexCount);
-  meshopt_optimizeVertexCache(indices.data(), mesh.Indices.data(), indexCount, vertexCount);
+  if (order == CacheOrder::Fast)
+  {
+    meshopt_optimizeVertexCacheFifo(
+      indices.data(), mesh.Indices.data(), indexCount, vertexCount, 16);
+  }
+  else
+  {
+    meshopt_optimizeVertexCache(indices.data(), mesh.Indices.data(), indexCount, vertexCount);
+  }
   std::vector<std::uint32_t> remap(vertexCount);
   const std::size_t used =
     meshopt_optimizeVertexFetchRemap(remap.data(), indices.data(), indexCount, vertexCount);

@@ -25,6 +25,10 @@ expect 0 "cpu: partition [0-9.]+s, construction [0-9.]+s in this process; jobs: 
 expect 0 "simplify: [0-9]+ diamonds" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/y.atp" --threads 1 --patch-budget 1000
 expect 0 "model: [0-9]+ nodes, [0-9]+ levels" -- "$atp" info "$work/x.atp"
 expect 0 '"bytes_per_input_triangle"' -- "$atp" info --json "$work/x.atp"
+expect 0 '"cache_order": "best"' -- "$atp" info --json "$work/x.atp"
+expect 0 "done: " -- "$atp" build "$data/bumpy-torus.ply" -o "$work/fast.atp" --quiet --fast-cache-order
+expect 0 "patch budget 2000, fast cache order," -- "$atp" info "$work/fast.atp"
+expect 0 "fast.atp: valid" -- "$atp" verify "$work/fast.atp"
 expect 0 "x.atp: valid" -- "$atp" verify "$work/x.atp"
 # Corruption anywhere and truncation: verify says so with exit code 1.
 cp "$work/x.atp" "$work/bad.atp"
@@ -55,7 +59,7 @@ cmp -s "$work/x.atp" "$work/keep.atp" || { echo "FAIL: a failed build changed th
 
 # A full scratch disk (a file size limit stands in for it): an error, not a crash.
 expect 1 "cannot write scratch data.*(File too large|No space)" -- bash -c "ulimit -f 2048; exec '$atp' build '$data/bumpy-torus.ply' -o '$work/full.atp' --bucket-memory 1 --scratch '$work' --quiet"
-[ -z "$(ls "$work" | grep -v -E '^(x|y|keep)\.atp$|\.ply$')" ] || { echo "FAIL: files left behind: $(ls "$work")"; failures=$((failures + 1)); }
+[ -z "$(ls "$work" | grep -v -E '^(x|y|keep|fast)\.atp$|\.ply$')" ] || { echo "FAIL: files left behind: $(ls "$work")"; failures=$((failures + 1)); }
 
 # atp extract: a level or a camera's cut as PLY, VTP or STL, read back by the builder's own
 # readers; mistakes and failed writes are one line, a non-zero exit and no file.

@@ -20,6 +20,14 @@ out=$(mpi "$atp" build "$data/bumpy-torus.ply" -o "$work/mpi.atp" "${options[@]}
 grep -qE "mpi: 2 workers, jobs per worker [0-9]+/[0-9]+, [0-9]+ MiB shipped to workers and [0-9]+ MiB back, coordinator CPU [0-9.]+s, peak memory per worker [0-9]+ MiB" <<<"$out" ||
   fail "no worker summary in: $out"
 cmp -s "$work/single.atp" "$work/mpi.atp" || fail "the MPI model differs from the single-process one"
+# The workers order triangles as the coordinator was told.
+"$atp" build "$data/bumpy-torus.ply" -o "$work/single-fast.atp" "${options[@]}" --fast-cache-order -j 1 \
+  >/dev/null || fail "single-process build, fast cache order"
+out=$(mpi "$atp" build "$data/bumpy-torus.ply" -o "$work/mpi-fast.atp" "${options[@]}" --fast-cache-order \
+  --mpi 2>&1) || fail "mpi build, fast cache order: $out"
+cmp -s "$work/single-fast.atp" "$work/mpi-fast.atp" ||
+  fail "the MPI model differs from the single-process one (fast cache order)"
+rm -f "$work/single-fast.atp" "$work/mpi-fast.atp"
 
 # Faults injected in the workers (ATP_MPI_TEST_FAULT, see Apps/atpMpiBuild.h).
 echo "previous model" >"$work/old.atp"

@@ -22,6 +22,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <iterator>
@@ -72,6 +73,24 @@ struct TemporaryPath
 bool Exists(const TemporaryPath& p)
 {
   return ::access(p.c_str(), F_OK) == 0;
+}
+
+/// A patch's triangles by their corners' positions, each rotated to start at its smallest
+/// corner (keeping the winding), sorted.
+std::vector<std::array<std::array<float, 3>, 3>> TriangleSet(const atp::PatchMesh& patch)
+{
+  std::vector<std::array<std::array<float, 3>, 3>> set(patch.TriangleCount());
+  for (std::size_t t = 0; t < set.size(); ++t)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      std::copy_n(&patch.Positions[3 * std::size_t(patch.Indices[3 * t + std::size_t(c)])], 3,
+        set[t][std::size_t(c)].begin());
+    }
+    std::rotate(set[t].begin(), std::min_element(set[t].begin(), set[t].end()), set[t].end());
+  }
+  std::sort(set.begin(), set.end());
+  return set;
 }
 
 struct ProgressLog
@@ -280,6 +299,41 @@ TEST(Builder, StreamsAFileToTheSameResult)
   EXPECT_EQ(fromFile->GetInputStats().BoundaryEdges, 160u);
 }
 
+// The fast cache order only reorders each patch's triangles: the same tree, the same
+// triangles in every node (so no crack the default order would not have), other bytes, and the
+// model says which order it holds.
+TEST(Builder, FastCacheOrderReordersTheSamePatches)
+{
+  const TemporaryPath best("best.atp"), fast("fast.atp");
+  for (const bool on : { false, true })
+  {
+    vtkNew<vtkATPBuilder> builder;
+    builder->SetInputData(WavySheet(60));
+    builder->SetFileName(on ? fast.c_str() : best.c_str());
+    builder->SetLeafCapacity(400);
+    builder->SetPatchBudget(200);
+    builder->SetFastCacheOrder(on);
+    ASSERT_EQ(builder->Build(), 1) << builder->GetErrorMessage();
+  }
+  const atp::ModelFile bestModel = atp::ModelFile::Open(best.Path);
+  const atp::ModelFile fastModel = atp::ModelFile::Open(fast.Path);
+  EXPECT_EQ(bestModel.Header().Flags & atp::ModelFlagFastCacheOrder, 0u);
+  EXPECT_EQ(fastModel.Header().Flags & atp::ModelFlagFastCacheOrder, atp::ModelFlagFastCacheOrder);
+  ASSERT_EQ(bestModel.NodeCount(), fastModel.NodeCount());
+  ASSERT_GT(bestModel.Header().Depth, 2u);
+  std::size_t reordered = 0;
+  atp::PatchMesh a, b;
+  for (std::size_t i = 0; i < bestModel.NodeCount(); ++i)
+  {
+    ASSERT_EQ(bestModel.Node(i).Tet, fastModel.Node(i).Tet);
+    bestModel.DecodePatch(i, a);
+    fastModel.DecodePatch(i, b);
+    EXPECT_EQ(TriangleSet(a), TriangleSet(b)) << "node " << i;
+    reordered += a.Indices != b.Indices;
+  }
+  EXPECT_GT(reordered, 0u);
+}
+
 TEST(Builder, ReportsErrorsWithoutThrowing)
 {
   vtkNew<vtkCallbackCommand> quiet; // keep expected errors out of the test log
@@ -354,8 +408,10 @@ TEST(Builder, PrintsItsProperties)
   vtkNew<vtkATPBuilder> builder;
   builder->SetLeafCapacity(1234);
   builder->SetScratchDirectory("/var/tmp");
+  builder->FastCacheOrderOn();
   std::ostringstream s;
   builder->Print(s);
   EXPECT_NE(s.str().find("LeafCapacity: 1234"), std::string::npos);
   EXPECT_NE(s.str().find("ScratchDirectory: /var/tmp"), std::string::npos);
+  EXPECT_NE(s.str().find("FastCacheOrder: on"), std::string::npos);
 }

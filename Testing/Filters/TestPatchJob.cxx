@@ -140,7 +140,7 @@ TEST(PatchJob, MalformedMessagesAreRefused)
   const float corners[2][3] = { { 0, 0, 0 }, { 1, 2, 3 } };
   bounds.Add(corners[0]);
   bounds.Add(corners[1]);
-  const atp::PatchJobContext context(bounds, 100, true);
+  const atp::PatchJobContext context(bounds, 100, true, atp::CacheOrder::Fast);
 
   atp::PatchJob job;
   job.Soup.resize(2);
@@ -191,6 +191,11 @@ TEST(PatchJob, MalformedMessagesAreRefused)
   EXPECT_EQ(back.PatchBudget, 100u);
   EXPECT_TRUE(back.Colors);
   EXPECT_EQ(back.Grid.Step, context.Grid.Step);
+  EXPECT_EQ(back.Order, atp::CacheOrder::Fast);
+  message.back() = 2; // no such cache order
+  EXPECT_THROW(atp::DecodeContext(message.data(), message.size()), std::runtime_error);
+  message.back() = std::uint8_t(atp::CacheOrder::Best);
+  EXPECT_EQ(atp::DecodeContext(message.data(), message.size()).Order, atp::CacheOrder::Best);
   message[0] ^= 1; // another layout: another atp build
   try
   {

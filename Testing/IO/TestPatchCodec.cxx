@@ -16,6 +16,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <random>
 #include <string>
 #include <vector>
@@ -421,16 +422,56 @@ TEST(PatchCodec, EncodersDecodedMeshIsTheDecodersBitForBit)
   {
     for (const atp::PatchMesh& mesh : { rough, Terrain(0, 0, 0.5f, 7, false, 2), atp::PatchMesh() })
     {
+      for (const atp::CacheOrder order : { atp::CacheOrder::Best, atp::CacheOrder::Fast })
+      {
       atp::PatchMesh fromEncoder, fromBytes;
-      const std::vector<std::uint8_t> bytes = atp::EncodePatch(mesh, grid, precision, &fromEncoder);
+      const std::vector<std::uint8_t> bytes =
+        atp::EncodePatch(mesh, grid, precision, &fromEncoder, order);
       atp::DecodePatch(bytes.data(), bytes.size(), grid, fromBytes);
       EXPECT_EQ(fromEncoder.Indices, fromBytes.Indices);
       EXPECT_EQ(fromEncoder.Positions, fromBytes.Positions);
       EXPECT_EQ(fromEncoder.Normals, fromBytes.Normals);
       EXPECT_EQ(fromEncoder.Colors, fromBytes.Colors);
       EXPECT_TRUE(fromEncoder.BoundaryEdges.empty());
+      }
     }
   }
+}
+
+// The fast order is another order of the same triangles, still one a vertex cache likes: close
+// to the best order's misses, far below the input's shuffled order.
+TEST(PatchCodec, FastCacheOrderKeepsTheTrianglesInAnotherGoodOrder)
+{
+  const atp::QuantizationGrid grid = GridFor(-2, 2);
+  atp::PatchMesh mesh = Terrain(-1.5f, 0.25f, 1.0f, 40, true, 3);
+  std::vector<std::size_t> order(mesh.TriangleCount());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::shuffle(order.begin(), order.end(), std::mt19937(3));
+  const std::vector<std::uint32_t> rows = mesh.Indices;
+  for (std::size_t t = 0; t < order.size(); ++t)
+  {
+    std::copy_n(&rows[3 * order[t]], 3, &mesh.Indices[3 * t]);
+  }
+  std::map<atp::CacheOrder, atp::PatchMesh> decoded;
+  for (const atp::CacheOrder order : { atp::CacheOrder::Best, atp::CacheOrder::Fast })
+  {
+    const std::vector<std::uint8_t> bytes = atp::EncodePatch(mesh, grid, {}, nullptr, order);
+    atp::DecodePatch(bytes.data(), bytes.size(), grid, decoded[order]);
+    ExpectValid(decoded[order]);
+  }
+  const atp::PatchMesh& best = decoded[atp::CacheOrder::Best];
+  const atp::PatchMesh& fast = decoded[atp::CacheOrder::Fast];
+  EXPECT_EQ(TriangleSet(fast.Positions, fast.Indices), TriangleSet(best.Positions, best.Indices));
+  EXPECT_NE(fast.Indices, best.Indices);
+  const auto missesPerTriangle = [](const atp::PatchMesh& m) {
+    return meshopt_analyzeVertexCache(m.Indices.data(), m.Indices.size(), m.VertexCount(), 16, 0, 0)
+      .acmr;
+  };
+  const float input = missesPerTriangle(mesh);
+  const float bestMisses = missesPerTriangle(best);
+  const float fastMisses = missesPerTriangle(fast);
+  EXPECT_LT(fastMisses, 1.1f * bestMisses);
+  EXPECT_LT(fastMisses, 0.6f * input);
 }
 
 TEST(PatchCodec, SmoothSurfacesArePredicted)
