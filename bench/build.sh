@@ -1,18 +1,28 @@
 #!/usr/bin/env bash
 # End-to-end construction figures: throughput, peak memory, temporary disk, bytes per triangle.
-#   bench/build.sh brain|TRIANGLES|MESH.ply [SCRATCH_DIR]
+#   bench/build.sh brain|TRIANGLES|MESH.ply [SCRATCH_DIR] [-- ATP_BUILD_OPTION...]
 # "brain": the MRI isosurface of ch2better.nii.gz (mricron-data) at 60, resampled 2x (9.1M
 # triangles). A number: a generated bumpy torus of at least that many triangles. A file: that
 # mesh.
 # Generated inputs go to SCRATCH_DIR (default a new directory under /tmp, removed afterwards).
+# Options after "--" go to `atp build` (e.g. -- --fast-cache-order).
 # The page cache is warmed, then `atp build` runs while the file system's used space is sampled,
 # so the temporary disk figure is measured, not estimated (the scratch files are unlinked and
 # invisible to du).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 what=${1:-brain}
+given_scratch=
+[ $# -ge 2 ] && [ "$2" != -- ] && given_scratch=$2
+build_options=()
+for ((i = 1; i <= $#; ++i)); do
+  if [ "${!i}" = -- ]; then
+    build_options=("${@:i+1}")
+    break
+  fi
+done
 source bench/common.sh
-scratch_dir "${2:-}"
+scratch_dir "$given_scratch"
 input_path "$what" "$scratch"
 cleanup() {
   [ "$input" = "$what" ] || rm -f "$input"
@@ -31,7 +41,7 @@ base=$(used)
 ( while sleep 0.5; do used; done ) > "$scratch/df.log" &
 sampler=$!
 /usr/bin/time -f "time: %e s wall, %U s user, peak resident %M KiB" \
-  build/bin/atp build "$input" -o "$scratch/model.atp" --scratch "$scratch" --quiet
+  build/bin/atp build "$input" -o "$scratch/model.atp" --scratch "$scratch" --quiet "${build_options[@]}"
 kill "$sampler"
 peak=$(sort -n "$scratch/df.log" | tail -1)
 model_bytes=$(stat -c %s "$scratch/model.atp")
