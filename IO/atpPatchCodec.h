@@ -71,7 +71,7 @@ struct PatchPrecision
 /// meshoptimizer); DecodePatch reads either.
 enum class CacheOrder : std::uint8_t
 {
-  /// meshopt_optimizeVertexCache: the fewest cache misses and the smallest index stream.
+  /// meshopt_optimizeVertexCache: the smallest index stream and the fastest decoding.
   Best,
   /// meshopt_optimizeVertexCacheFifo (a cache of 16): encodes about 1.7 times as fast, for about
   /// 6% more bytes and 8% more decoding time; about as few cache misses (docs/construction.md).
