@@ -1,5 +1,6 @@
 // vtkATPBuilder as a VTK user drives it: polydata or file input, properties, progress events,
 // errors reported (not thrown), PrintSelf.
+#include "MeshTriangles.h"
 #include "atpConstruction.h"
 #include "atpCpuTime.h"
 #include "atpCutIndex.h"
@@ -22,7 +23,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <iterator>
@@ -73,24 +73,6 @@ struct TemporaryPath
 bool Exists(const TemporaryPath& p)
 {
   return ::access(p.c_str(), F_OK) == 0;
-}
-
-/// A patch's triangles by their corners' positions, each rotated to start at its smallest
-/// corner (keeping the winding), sorted.
-std::vector<std::array<std::array<float, 3>, 3>> TriangleSet(const atp::PatchMesh& patch)
-{
-  std::vector<std::array<std::array<float, 3>, 3>> set(patch.TriangleCount());
-  for (std::size_t t = 0; t < set.size(); ++t)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      std::copy_n(&patch.Positions[3 * std::size_t(patch.Indices[3 * t + std::size_t(c)])], 3,
-        set[t][std::size_t(c)].begin());
-    }
-    std::rotate(set[t].begin(), std::min_element(set[t].begin(), set[t].end()), set[t].end());
-  }
-  std::sort(set.begin(), set.end());
-  return set;
 }
 
 struct ProgressLog
@@ -328,7 +310,9 @@ TEST(Builder, FastCacheOrderReordersTheSamePatches)
     ASSERT_EQ(bestModel.Node(i).Tet, fastModel.Node(i).Tet);
     bestModel.DecodePatch(i, a);
     fastModel.DecodePatch(i, b);
-    EXPECT_EQ(TriangleSet(a), TriangleSet(b)) << "node " << i;
+    EXPECT_EQ(atp::test::TriangleSet(a.Positions, a.Indices),
+      atp::test::TriangleSet(b.Positions, b.Indices))
+      << "node " << i;
     reordered += a.Indices != b.Indices;
   }
   EXPECT_GT(reordered, 0u);

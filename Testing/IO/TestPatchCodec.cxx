@@ -1,6 +1,7 @@
 // Patch codec and quantization grid: round trips keep the triangle set, positions on the one
 // global grid (bit-identical across patches), normals and colors; hostile bytes only ever give
 // PatchFormatError or a valid patch.
+#include "MeshTriangles.h"
 #include "atpNormalEncoding.h"
 #include "atpPatchCodec.h"
 #include "atpQuantizationGrid.h"
@@ -23,34 +24,9 @@
 
 namespace
 {
-using Corner = std::array<std::uint32_t, 3>; // float bits of a position
-using Triangle = std::array<Corner, 3>;
-
-Corner Bits(const float* p)
-{
-  Corner c;
-  std::memcpy(c.data(), p, sizeof(c));
-  return c;
-}
-
-/// Each triangle as its corners' float bits, rotated to start at the smallest (keeps winding).
-std::vector<Triangle> TriangleSet(const std::vector<float>& positions,
-  const std::vector<std::uint32_t>& indices)
-{
-  std::vector<Triangle> set;
-  for (std::size_t t = 0; t + 2 < indices.size(); t += 3)
-  {
-    Triangle tri;
-    for (int c = 0; c < 3; ++c)
-    {
-      tri[c] = Bits(&positions[3 * indices[t + c]]);
-    }
-    std::rotate(tri.begin(), std::min_element(tri.begin(), tri.end()), tri.end());
-    set.push_back(tri);
-  }
-  std::sort(set.begin(), set.end());
-  return set;
-}
+using atp::test::Bits;
+using atp::test::TriangleSet;
+using Corner = atp::test::CornerBits;
 
 /// A bumpy height field over [x0, x0 + size]^2 with unit normals, n x n quads, optional colors,
 /// and its vertices shuffled so the encoder has reordering to do.
