@@ -315,7 +315,10 @@ int BucketStore::CornerIndex(std::size_t frame, const Corner& corner)
   unsigned char* bytes = page + PageHeaderBytes + corners * CornerBytes;
   std::memcpy(bytes, &corner.Low, sizeof(corner.Low));
   std::memcpy(bytes + sizeof(corner.Low), &corner.High, sizeof(corner.High));
-  std::memcpy(bytes + PositionNormalBytes, &corner.Color, CornerBytes - PositionNormalBytes);
+  if (CornerBytes > PositionNormalBytes)
+  {
+    std::memcpy(bytes + PositionNormalBytes, &corner.Color, sizeof(corner.Color));
+  }
   PutU16(page, std::uint16_t(corners + 1));
   table[slot] = std::uint16_t(corners + 1);
   return int(corners);
@@ -362,8 +365,12 @@ bool BucketStore::AddToPage(std::size_t frame, const SoupTriangle& triangle, Buc
   record[6] = triangle.BoundaryEdges;
   PutU16(page + 2, std::uint16_t(triangles + 1));
   last.Bucket = bucket;
-  std::copy(std::begin(corners), std::end(corners), last.Corners);
-  std::copy(std::begin(numbers), std::end(numbers), last.Numbers);
+  // Element by element: std::copy of the corners became a call to memmove per triangle.
+  for (int k = 0; k < 3; ++k)
+  {
+    last.Corners[k] = corners[k];
+    last.Numbers[k] = numbers[k];
+  }
   return true;
 }
 
@@ -466,7 +473,10 @@ void BucketStore::Unpack(const unsigned char* page, std::vector<SoupTriangle>& o
       const unsigned char* corner = page + PageHeaderBytes + c * CornerBytes;
       std::memcpy(triangle.V[k], corner, 3 * sizeof(float));
       std::memcpy(triangle.Normals[k], corner + 3 * sizeof(float), 2 * sizeof(std::int16_t));
-      std::memcpy(triangle.Colors[k], corner + PositionNormalBytes, CornerBytes - PositionNormalBytes);
+      if (CornerBytes > PositionNormalBytes)
+      {
+        std::memcpy(triangle.Colors[k], corner + PositionNormalBytes, sizeof(triangle.Colors[k]));
+      }
     }
     out.push_back(triangle);
   }
