@@ -51,12 +51,12 @@ std::array<double, 3> AreaNormal(const float v[3][3])
 /// Vertices scanned, or triangles visited, between releases of resident pages.
 constexpr std::uint64_t ReleaseInterval = std::uint64_t(1) << 22;
 
-/// Kept triangles of the first pass and their area normals, as added to the normal sums.
+/// Kept triangles of the first pass and their corners' positions.
 struct FirstPassBatch
 {
   static constexpr std::size_t Capacity = 1 << 16;
   std::vector<std::array<std::uint32_t, 3>> Triangles;
-  std::vector<std::array<float, 3>> AreaNormals;
+  std::vector<std::array<std::array<float, 3>, 3>> Corners;
 };
 
 } // namespace
@@ -112,14 +112,15 @@ bool MeshTriangleSource::Keep(const std::uint32_t triangle[3], float corners[3][
 
 void MeshTriangleSource::FirstPass()
 {
-  // One thread reads the faces and fetches their corners while this one adds them to the
-  // sketch and the normal sums, in face order: the sums come out bit for bit as one thread's.
+  // One thread reads the faces and fetches their corners while this one weighs their normals
+  // and adds them to the sketch and the normal sums, in face order: the sums come out bit for
+  // bit as one thread's. The reading thread is the busier of the two.
   bool facesLeft = true;
   ProduceConsume<FirstPassBatch>(
     3,
     [&](FirstPassBatch& batch) {
       batch.Triangles.clear();
-      batch.AreaNormals.clear();
+      batch.Corners.clear();
       std::uint32_t triangle[3];
       float corners[3][3];
       while (batch.Triangles.size() < FirstPassBatch::Capacity)
@@ -146,9 +147,9 @@ void MeshTriangleSource::FirstPass()
           ++this->Statistics.DegenerateDropped;
           continue;
         }
-        const std::array<double, 3> normal = AreaNormal(corners);
         batch.Triangles.push_back({ { triangle[0], triangle[1], triangle[2] } });
-        batch.AreaNormals.push_back({ { float(normal[0]), float(normal[1]), float(normal[2]) } });
+        batch.Corners.emplace_back();
+        std::memcpy(batch.Corners.back().data(), corners, sizeof(corners));
       }
       this->KeptTriangles += batch.Triangles.size();
       return !batch.Triangles.empty();
@@ -158,12 +159,16 @@ void MeshTriangleSource::FirstPass()
       {
         const std::array<std::uint32_t, 3>& triangle = batch.Triangles[i];
         this->Sketch.AddTriangle(triangle[0], triangle[1], triangle[2]);
+        float corners[3][3];
+        std::memcpy(corners, batch.Corners[i].data(), sizeof(corners));
+        const std::array<double, 3> normal = AreaNormal(corners);
+        const float weighted[3] = { float(normal[0]), float(normal[1]), float(normal[2]) };
         for (const std::uint32_t corner : triangle)
         {
           std::array<float, 3>& sum = this->NormalSums[corner];
           for (int a = 0; a < 3; ++a)
           {
-            sum[a] += batch.AreaNormals[i][std::size_t(a)];
+            sum[a] += weighted[a];
           }
         }
       }
