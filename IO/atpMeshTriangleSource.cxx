@@ -55,8 +55,12 @@ constexpr std::uint64_t ReleaseInterval = std::uint64_t(1) << 22;
 struct FirstPassBatch
 {
   static constexpr std::size_t Capacity = 1 << 16;
+  struct Corners
+  {
+    float V[3][3];
+  };
   std::vector<std::array<std::uint32_t, 3>> Triangles;
-  std::vector<std::array<std::array<float, 3>, 3>> Corners;
+  std::vector<Corners> Positions;
 };
 
 } // namespace
@@ -120,7 +124,7 @@ void MeshTriangleSource::FirstPass()
     3,
     [&](FirstPassBatch& batch) {
       batch.Triangles.clear();
-      batch.Corners.clear();
+      batch.Positions.clear();
       std::uint32_t triangle[3];
       float corners[3][3];
       while (batch.Triangles.size() < FirstPassBatch::Capacity)
@@ -148,8 +152,8 @@ void MeshTriangleSource::FirstPass()
           continue;
         }
         batch.Triangles.push_back({ { triangle[0], triangle[1], triangle[2] } });
-        batch.Corners.emplace_back();
-        std::memcpy(batch.Corners.back().data(), corners, sizeof(corners));
+        batch.Positions.emplace_back();
+        std::memcpy(batch.Positions.back().V, corners, sizeof(corners));
       }
       this->KeptTriangles += batch.Triangles.size();
       return !batch.Triangles.empty();
@@ -159,9 +163,7 @@ void MeshTriangleSource::FirstPass()
       {
         const std::array<std::uint32_t, 3>& triangle = batch.Triangles[i];
         this->Sketch.AddTriangle(triangle[0], triangle[1], triangle[2]);
-        float corners[3][3];
-        std::memcpy(corners, batch.Corners[i].data(), sizeof(corners));
-        const std::array<double, 3> normal = AreaNormal(corners);
+        const std::array<double, 3> normal = AreaNormal(batch.Positions[i].V);
         const float weighted[3] = { float(normal[0]), float(normal[1]), float(normal[2]) };
         for (const std::uint32_t corner : triangle)
         {
