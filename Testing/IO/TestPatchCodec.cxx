@@ -400,15 +400,15 @@ TEST(PatchCodec, EncodersDecodedMeshIsTheDecodersBitForBit)
     {
       for (const atp::CacheOrder order : { atp::CacheOrder::Best, atp::CacheOrder::Fast })
       {
-      atp::PatchMesh fromEncoder, fromBytes;
-      const std::vector<std::uint8_t> bytes =
-        atp::EncodePatch(mesh, grid, precision, &fromEncoder, order);
-      atp::DecodePatch(bytes.data(), bytes.size(), grid, fromBytes);
-      EXPECT_EQ(fromEncoder.Indices, fromBytes.Indices);
-      EXPECT_EQ(fromEncoder.Positions, fromBytes.Positions);
-      EXPECT_EQ(fromEncoder.Normals, fromBytes.Normals);
-      EXPECT_EQ(fromEncoder.Colors, fromBytes.Colors);
-      EXPECT_TRUE(fromEncoder.BoundaryEdges.empty());
+        atp::PatchMesh fromEncoder, fromBytes;
+        const std::vector<std::uint8_t> bytes =
+          atp::EncodePatch(mesh, grid, precision, &fromEncoder, order);
+        atp::DecodePatch(bytes.data(), bytes.size(), grid, fromBytes);
+        EXPECT_EQ(fromEncoder.Indices, fromBytes.Indices);
+        EXPECT_EQ(fromEncoder.Positions, fromBytes.Positions);
+        EXPECT_EQ(fromEncoder.Normals, fromBytes.Normals);
+        EXPECT_EQ(fromEncoder.Colors, fromBytes.Colors);
+        EXPECT_TRUE(fromEncoder.BoundaryEdges.empty());
       }
     }
   }
