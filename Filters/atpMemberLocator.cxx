@@ -10,6 +10,9 @@ namespace
 {
 /// A barycentric coordinate above this puts a point inside its member whatever the rounding.
 constexpr double ClearlyInside = 1e-6;
+/// DeepMemberOf's margin: a convex combination of points this far inside a member is still
+/// above ClearlyInside after rounding (about 1e-13 here).
+constexpr double DeeplyInside = 2 * ClearlyInside;
 }
 
 MemberLocator::MemberLocator(const std::vector<Tetra>& members, const LatticeFrame& frame)
@@ -69,11 +72,19 @@ double MemberLocator::Inside(std::size_t m, const double q[3]) const
   return inside;
 }
 
-int MemberLocator::MemberOf(const double p[3], int likely) const
+void MemberLocator::ToLattice(const double p[3], double q[3]) const
 {
   const double scale = Frame.Scale();
-  const double q[3] = { (p[0] - Frame.Origin()[0]) * scale, (p[1] - Frame.Origin()[1]) * scale,
-    (p[2] - Frame.Origin()[2]) * scale };
+  for (int a = 0; a < 3; ++a)
+  {
+    q[a] = (p[a] - Frame.Origin()[a]) * scale;
+  }
+}
+
+int MemberLocator::MemberOf(const double p[3], int likely) const
+{
+  double q[3];
+  ToLattice(p, q);
   if (likely >= 0 && std::size_t(likely) < Members.size() && Inside(std::size_t(likely), q) > ClearlyInside)
   {
     return likely;
@@ -95,6 +106,25 @@ int MemberLocator::MemberOf(const double p[3], int likely) const
     }
   }
   return best;
+}
+
+int MemberLocator::DeepMemberOf(const double p[3], int likely) const
+{
+  double q[3];
+  ToLattice(p, q);
+  if (likely >= 0 && std::size_t(likely) < Members.size() && Inside(std::size_t(likely), q) > DeeplyInside)
+  {
+    return likely;
+  }
+  // Members' interiors are disjoint: at most one holds p this deeply.
+  for (std::size_t m = 0; m < Members.size(); ++m)
+  {
+    if (Inside(m, q) > DeeplyInside)
+    {
+      return int(m);
+    }
+  }
+  return -1;
 }
 
 } // namespace atp

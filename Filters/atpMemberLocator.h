@@ -22,6 +22,12 @@ public:
   /// answer stands when p is well inside it (no other member can then hold p).
   int MemberOf(const double p[3], int likely = 0) const;
 
+  /// The member whose interior holds p deeply enough that MemberOf gives it for any convex
+  /// combination of points this gives it for (members are convex, and the margin is twice
+  /// MemberOf's own, far above rounding); -1 when no member holds p that deeply. A triangle whose
+  /// corners all answer m then has its centroid in m without asking. `likely` as for MemberOf.
+  int DeepMemberOf(const double p[3], int likely = 0) const;
+
 private:
   /// Per member: barycentric coordinates as an affine map of the lattice point.
   struct Barycentric
@@ -30,6 +36,8 @@ private:
   };
   /// The least barycentric coordinate of lattice point q in member m: > 0 inside it.
   double Inside(std::size_t m, const double q[3]) const;
+  /// p in lattice coordinates, which the barycentric maps take.
+  void ToLattice(const double p[3], double q[3]) const;
 
   std::vector<Barycentric> Members;
   LatticeFrame Frame;

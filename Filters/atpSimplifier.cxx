@@ -283,6 +283,8 @@ private:
   /// counted as moved to its center; false when there is none. Unless anySize, only a piece
   /// within the deviation the collapses made so far: its removal leaves the error as it is.
   bool RemoveSmallestPiece(bool anySize);
+  /// The region of triangle t once its corner u moves onto v, by its centroid.
+  int MovedRegionOf(std::uint32_t t, std::uint32_t u, std::uint32_t v) const;
   /// Change of the total excess over the quotas if u moves onto v; fills MovedRegions.
   std::int64_t ExcessChange(std::uint32_t u, std::uint32_t v);
   void Collapse(std::uint32_t u, std::uint32_t v);
@@ -309,6 +311,17 @@ private:
   }
   void FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, std::uint32_t w);
   int RegionOf(const double point[3], int likely) const;
+  /// The region of a triangle with corners a, b, c when all three lie deep in it
+  /// (SimplifyOptions::DeepRegionOf), else -1: regionOf must then be asked.
+  int SharedDeepRegion(std::uint32_t a, std::uint32_t b, std::uint32_t c) const
+  {
+    if (DeepRegion.empty())
+    {
+      return -1;
+    }
+    const int r = DeepRegion[a];
+    return DeepRegion[b] == r && DeepRegion[c] == r ? r : -1;
+  }
   bool OverQuota(int r) const { return Total > TotalQuota || Over[std::size_t(r)] != 0; }
   /// Adds delta to region r's live triangle count, keeping its Over flag current.
   void CountTriangles(int r, std::int64_t delta)
@@ -353,6 +366,7 @@ private:
   const PatchMesh& Mesh;
   const int RegionCount;
   const RegionFunction& RegionFn;
+  const RegionFunction& DeepRegionFn;
   const std::vector<std::uint32_t>& Quotas;
   const std::size_t VertexCount;
   const std::size_t TriangleCount;
@@ -380,6 +394,9 @@ private:
   CollapseQueues Waiting; // per region: the vertices whose collapse removes its triangles
   std::vector<std::int64_t> Counts;           // live triangles per region
   std::vector<std::uint8_t> Over;             // per region: Counts over its quota
+  /// Per vertex: the region it lies deep in, or -1 (SimplifyOptions::DeepRegionOf); empty
+  /// without that function or with one region.
+  std::vector<int> DeepRegion;
   std::size_t RegionsOver = 0;                // regions over their quotas
   std::int64_t Total = 0;                     // live triangles in all
   const std::int64_t TotalQuota;              // while Total is over it, every region is over
@@ -440,6 +457,7 @@ Simplifier::Simplifier(const PatchMesh& mesh, int regionCount, const RegionFunct
   : Mesh(mesh)
   , RegionCount(regionCount)
   , RegionFn(regionOf)
+  , DeepRegionFn(options.DeepRegionOf)
   , Quotas(quotas)
   , VertexCount(mesh.VertexCount())
   , TriangleCount(mesh.TriangleCount())
@@ -566,6 +584,23 @@ void Simplifier::LinkCorners()
 
 void Simplifier::AssignRegions()
 {
+  if (RegionCount > 1 && DeepRegionFn)
+  {
+    DeepRegion.resize(VertexCount);
+    int likely = 0; // vertices come patch by patch too
+    for (std::size_t v = 0; v < VertexCount; ++v)
+    {
+      const double p[3] = { double(Mesh.Positions[3 * v]), double(Mesh.Positions[3 * v + 1]),
+        double(Mesh.Positions[3 * v + 2]) };
+      const int r = DeepRegionFn(p, likely);
+      if (r < -1 || r >= RegionCount)
+      {
+        throw std::invalid_argument("Simplify: the deep region function returned a region out of range");
+      }
+      DeepRegion[v] = r;
+      likely = r >= 0 ? r : likely;
+    }
+  }
   for (std::size_t t = 0; t < TriangleCount; ++t)
   {
     if (Faces[t].Removed)
@@ -575,6 +610,13 @@ void Simplifier::AssignRegions()
     if (RegionCount == 1)
     {
       CountTriangles(0, 1);
+      continue;
+    }
+    const int deep = SharedDeepRegion(Faces[t].V[0], Faces[t].V[1], Faces[t].V[2]);
+    if (deep >= 0)
+    {
+      Faces[t].Region = deep;
+      CountTriangles(deep, 1);
       continue;
     }
     double centroid[3] = { 0, 0, 0 };
@@ -1095,6 +1137,23 @@ void Simplifier::Offer(std::uint32_t x, std::uint32_t v)
   }
 }
 
+int Simplifier::MovedRegionOf(std::uint32_t t, std::uint32_t u, std::uint32_t v) const
+{
+  const float* pv = &Mesh.Positions[3 * std::size_t(v)];
+  double centroid[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    double sum = double(pv[a]);
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t x = Faces[t].V[k];
+      sum += x == u ? 0.0 : double(Mesh.Positions[3 * std::size_t(x) + std::size_t(a)]);
+    }
+    centroid[a] = sum / 3;
+  }
+  return RegionOf(centroid, Faces[t].Region);
+}
+
 std::int64_t Simplifier::ExcessChange(std::uint32_t u, std::uint32_t v)
 {
   Touched.clear();
@@ -1108,7 +1167,6 @@ std::int64_t Simplifier::ExcessChange(std::uint32_t u, std::uint32_t v)
     Delta[std::size_t(r)] += d;
     totalDelta += d;
   };
-  const float* pv = &Mesh.Positions[3 * std::size_t(v)];
   for (std::uint32_t c : Fan)
   {
     const std::uint32_t t = TriangleOf(c);
@@ -1123,18 +1181,12 @@ std::int64_t Simplifier::ExcessChange(std::uint32_t u, std::uint32_t v)
       MovedRegions.push_back(0); // nothing to ask
       continue;
     }
-    double centroid[3];
-    for (int a = 0; a < 3; ++a)
+    const std::uint32_t* tri = Faces[t].V;
+    int r = SharedDeepRegion(tri[0] == u ? v : tri[0], tri[1] == u ? v : tri[1], tri[2] == u ? v : tri[2]);
+    if (r < 0)
     {
-      double sum = double(pv[a]);
-      for (int k = 0; k < 3; ++k)
-      {
-        const std::uint32_t x = Faces[t].V[k];
-        sum += x == u ? 0.0 : double(Mesh.Positions[3 * std::size_t(x) + std::size_t(a)]);
-      }
-      centroid[a] = sum / 3;
+      r = MovedRegionOf(t, u, v);
     }
-    const int r = RegionOf(centroid, Faces[t].Region);
     MovedRegions.push_back(r);
     if (r != Faces[t].Region)
     {

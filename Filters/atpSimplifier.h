@@ -36,6 +36,12 @@ struct SimplifyOptions
   /// At most this many triangles in all, besides each region's own quota: the regions then
   /// share what they give up, each only held to its quota.
   std::uint64_t TotalQuota = UINT64_MAX;
+  /// Optional, with several regions: the region whose interior holds a point so deeply that
+  /// regionOf gives that region for any convex combination of points this gives it for, or -1
+  /// (MemberLocator::DeepMemberOf). Output vertices are input vertices, so each is asked once,
+  /// and a triangle whose corners share an answer needs no call of regionOf: most triangles,
+  /// since few lie near a region's border.
+  RegionFunction DeepRegionOf;
 };
 
 struct SimplifyResult

@@ -459,6 +459,7 @@ struct Case
   PatchMesh Mesh;
   int Regions = 1;
   RegionFunction RegionOf = [](const double*, int) { return 0; };
+  RegionFunction DeepRegionOf; ///< SimplifyOptions::DeepRegionOf, as the build sets it
   std::vector<std::uint32_t> Quotas;
   std::uint64_t TotalQuota = UINT64_MAX; ///< at most this many in all (SimplifyOptions)
   int Level = 0; ///< a diamond's level counted from the finest that simplifies (1); 0: a chunk
@@ -571,6 +572,7 @@ std::vector<Case> Diamonds(const std::string& path, std::size_t perLevel)
     diamond.Regions = int(job.Members.size());
     const auto locator = std::make_shared<MemberLocator>(job.Members, runner.Context->Frame);
     diamond.RegionOf = [locator](const double p[3], int likely) { return locator->MemberOf(p, likely); };
+    diamond.DeepRegionOf = [locator](const double p[3], int likely) { return locator->DeepMemberOf(p, likely); };
     const DiamondQuotas quotas = QuotasOf(job, runner.Context->PatchBudget);
     diamond.Quotas = quotas.Members;
     diamond.TotalQuota = quotas.Total;
@@ -699,6 +701,7 @@ int main(int argc, char** argv)
       SimplifyOptions options;
       options.NormalWeight = variant == 1 ? 0 : normalWeight;
       options.TotalQuota = input.TotalQuota;
+      options.DeepRegionOf = variant == 3 ? nullptr : input.DeepRegionOf;
       SimplifyResult result;
       rows[variant].Seconds = Time([&] {
         result = variant == 3

@@ -7,9 +7,11 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include <random>
+#include <vector>
 
 using namespace atp;
 using atp::testing::FaceMatchingProblem;
@@ -309,16 +311,15 @@ TEST(ConformityCheck, RejectsAMissingTetrahedron)
   EXPECT_NE(FaceMatchingProblem(tets), "");
 }
 
-// The member a point is given to does not depend on the member tried first: points well inside
-// a member, on the faces between members, and around the diamond (outside it too).
-TEST(MemberLocator, AnswerDoesNotDependOnTheLikelyMember)
+/// Calls test(locator, members, world) for 40 diamonds of a random refinement, world(t, b, p)
+/// giving the point p of barycentric coordinates b in member t.
+template <typename Test>
+int ForEachTestDiamond(Test test)
 {
   const TetraForest forest = RandomRefinement(11, 60);
   const double boxMin[3] = { -2, 0, 1 }, boxMax[3] = { 3, 4, 2 };
   const LatticeFrame frame(boxMin, boxMax);
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> unit(0, 1);
-  int diamonds = 0, points = 0, facePoints = 0;
+  int diamonds = 0;
   for (const auto leaf : forest.Leaves())
   {
     const std::vector<TetId> ids = DiamondMembers(forest[leaf].Id);
@@ -347,6 +348,19 @@ TEST(MemberLocator, AnswerDoesNotDependOnTheLikelyMember)
         out[a] = frame.Origin()[std::size_t(a)] + lattice[a] / frame.Scale();
       }
     };
+    test(locator, members, world);
+  }
+  return diamonds;
+}
+
+// The member a point is given to does not depend on the member tried first: points well inside
+// a member, on the faces between members, and around the diamond (outside it too).
+TEST(MemberLocator, AnswerDoesNotDependOnTheLikelyMember)
+{
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int points = 0, facePoints = 0;
+  const int diamonds = ForEachTestDiamond([&](const MemberLocator& locator, const std::vector<Tetra>& members, auto world) {
     for (std::size_t m = 0; m < members.size(); ++m)
     {
       for (int sample = 0; sample < 30; ++sample)
@@ -396,8 +410,90 @@ TEST(MemberLocator, AnswerDoesNotDependOnTheLikelyMember)
         ++points;
       }
     }
-  }
+  });
   EXPECT_EQ(diamonds, 40);
   EXPECT_GT(points, 2000);
   EXPECT_GT(facePoints, 700);
+}
+
+// A member DeepMemberOf names for three points is the member MemberOf gives their centroid,
+// whatever member it tries first, even for points barely deep enough: the simplifier assigns
+// most triangles on that guarantee. Points on a face, or only ClearlyInside of it, get -1.
+TEST(MemberLocator, DeepPointsVouchForTheirCentroids)
+{
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int triples = 0, nearFace = 0, deep = 0;
+  const int diamonds = ForEachTestDiamond([&](const MemberLocator& locator, const std::vector<Tetra>& members, auto world) {
+    for (std::size_t m = 0; m < members.size(); ++m)
+    {
+      std::vector<std::array<double, 3>> deepPoints;
+      for (int sample = 0; sample < 60; ++sample)
+      {
+        // Random barycentrics, with one coordinate often pushed to within a few times the
+        // margin of a face (2e-6), or onto it.
+        double b[4], sum = 0;
+        for (double& x : b)
+        {
+          x = unit(rng);
+          sum += x;
+        }
+        for (double& x : b)
+        {
+          x /= sum;
+        }
+        const int face = int(rng() % 4);
+        const int kind = sample % 4;
+        const double nearness[4] = { -1, 0, 1e-6, 2e-6 * (1 + 4 * unit(rng)) };
+        if (kind > 0)
+        {
+          const double rest = (1 - nearness[kind]) / (1 - b[face]);
+          for (double& x : b)
+          {
+            x *= rest;
+          }
+          b[face] = nearness[kind];
+        }
+        double p[3];
+        world(members[m], b, p);
+        const int answer = locator.DeepMemberOf(p);
+        for (int likely = 0; likely < int(members.size()); ++likely)
+        {
+          ASSERT_EQ(locator.DeepMemberOf(p, likely), answer);
+        }
+        if (kind == 1 || kind == 2)
+        {
+          ASSERT_EQ(answer, -1) << "a point within MemberOf's own margin of a face";
+          ++nearFace;
+          continue;
+        }
+        if (answer < 0)
+        {
+          continue;
+        }
+        ASSERT_EQ(answer, int(m));
+        ASSERT_EQ(locator.MemberOf(p), answer);
+        deepPoints.push_back({ p[0], p[1], p[2] });
+        ++deep;
+      }
+      for (std::size_t i = 0; i + 2 < deepPoints.size(); ++i)
+      {
+        double centroid[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          centroid[a] = (deepPoints[i][std::size_t(a)] + deepPoints[i + 1][std::size_t(a)] +
+                          deepPoints[i + 2][std::size_t(a)]) / 3;
+        }
+        for (int likely = 0; likely < int(members.size()); ++likely)
+        {
+          ASSERT_EQ(locator.MemberOf(centroid, likely), int(m));
+        }
+        ++triples;
+      }
+    }
+  });
+  EXPECT_EQ(diamonds, 40);
+  EXPECT_GT(deep, 1500);
+  EXPECT_GT(nearFace, 1000);
+  EXPECT_GT(triples, 1000);
 }

@@ -662,6 +662,50 @@ TEST(Simplifier, DeterministicAcrossRunsAndThreads)
   }
 }
 
+// With DeepRegionOf, a triangle whose corners lie deep in one region takes that region without
+// a call of regionOf: far fewer calls, the same result. An answer out of range is refused.
+TEST(Simplifier, DeepRegionsSpareLookupsAndChangeNothing)
+{
+  const PatchMesh mesh = BumpyTorus(80, 40);
+  std::size_t calls = 0;
+  const RegionFunction regions = [&calls](const double p[3], int) {
+    ++calls;
+    return p[0] < 0 ? 0 : (p[1] < 0 ? 1 : 2);
+  };
+  // The regions are convex (quarter and half spaces): a point clear of their borders vouches for
+  // every convex combination of such points.
+  const RegionFunction deep = [](const double p[3], int) {
+    constexpr double margin = 1e-3;
+    if (p[0] < -margin)
+    {
+      return 0;
+    }
+    if (p[0] > margin && std::abs(p[1]) > margin)
+    {
+      return p[1] < 0 ? 1 : 2;
+    }
+    return -1;
+  };
+  const std::vector<std::uint32_t> quotas{ 600, 500, 400 };
+  const SimplifyResult plain = Simplify(mesh, 3, regions, quotas);
+  const std::size_t plainCalls = calls;
+  calls = 0;
+  SimplifyOptions options;
+  options.DeepRegionOf = deep;
+  const SimplifyResult spared = Simplify(mesh, 3, regions, quotas, options);
+  EXPECT_LT(calls * 5, plainCalls) << calls << " calls with deep regions, " << plainCalls << " without";
+  EXPECT_EQ(spared.Error, plain.Error);
+  EXPECT_EQ(spared.Collapses, plain.Collapses);
+  for (int r = 0; r < 3; ++r)
+  {
+    EXPECT_EQ(spared.Regions[std::size_t(r)].Indices, plain.Regions[std::size_t(r)].Indices);
+    EXPECT_EQ(spared.Regions[std::size_t(r)].Positions, plain.Regions[std::size_t(r)].Positions);
+  }
+
+  options.DeepRegionOf = [](const double*, int) { return 3; };
+  EXPECT_THROW(Simplify(mesh, 3, regions, quotas, options), std::invalid_argument);
+}
+
 TEST(MergePatches, WelderNumbersPositionsInOrderOfFirstSightBitForBit)
 {
   const float points[][3] = { { 1, 2, 3 }, { 4, 5, 6 }, { 1, 2, 3 }, { 0.0f, 0, 0 }, { -0.0f, 0, 0 },
