@@ -219,6 +219,8 @@ private:
   bool CanCollapse(std::uint32_t u, std::uint32_t v);
   /// Queues u's cheapest collapse; only a legal one when checkLegal, otherwise legality is
   /// checked when it comes out of the queue (most evaluations are superseded before that).
+  /// checkLegal is for a vertex whose popped collapse just failed CanCollapse: Fan holds its
+  /// fan, shaped already.
   void Evaluate(std::uint32_t u, bool checkLegal)
   {
     Quadric::WithAttributeCount(
@@ -1044,7 +1046,10 @@ void Simplifier::EvaluateWith(std::uint32_t u, bool checkLegal)
     return;
   }
   Best[u] = Candidate();
-  GatherFan(u);
+  if (!checkLegal)
+  {
+    GatherFan(u);
+  }
   const double* record = Record(u);
   Candidate cheapest;
   if (checkLegal)
@@ -1053,7 +1058,9 @@ void Simplifier::EvaluateWith(std::uint32_t u, bool checkLegal)
     ForEachCollapse(u, [&](std::uint32_t target, int regionA, int regionB) {
       Candidates.push_back(Ranked(Cost<Fixed>(record, target), target, regionA, regionB));
     });
-    std::sort(Candidates.begin(), Candidates.end(), Before);
+    // A lambda rather than Before itself: a function pointer is called, not inlined.
+    std::sort(Candidates.begin(), Candidates.end(),
+      [](const Candidate& a, const Candidate& b) { return Before(a, b); });
     for (const Candidate& candidate : Candidates)
     {
       if (CanCollapse(u, candidate.Target))
