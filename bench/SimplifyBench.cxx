@@ -12,9 +12,11 @@
 // - the diamonds of a build of MESH, up to N of each level (--diamonds=N): each exactly what the
 //   build hands our simplifier (its children's patches merged, one region per member, the
 //   build's quotas: the budget per member, half of the children in all); meshoptimizer, which
-//   has no regions, gets the total. The time ratio is also given level by level; a large N
-//   (--diamonds=100000) takes every diamond, so that the levels weigh as in the build (half a
-//   minute for the bundled torus with --speed-only, over half an hour for the brain).
+//   has no regions, gets the total. The time ratio is also given level by level, and with
+//   each level's time per triangle weighted by the triangles the whole build simplifies there
+//   (the fine levels: each halves the one below); a large N (--diamonds=100000) takes every
+//   diamond, so that the sample itself weighs as the build (half a minute for the bundled torus
+//   with --speed-only, over half an hour for the brain).
 // --speed-only skips the error measures (for profiling the simplifiers: they take most of the
 // run otherwise); --normal-weight=W sets SimplifyOptions::NormalWeight of the first variant
 // (default: the library's).
@@ -520,6 +522,10 @@ public:
       [&](std::size_t i, PatchJob& job) {
         load(i, job);
         diamonds = diamonds || !job.IsLeaf();
+        for (const PatchMesh& child : job.Children)
+        {
+          LevelTriangles[DiamondLevels + 1] += double(child.TriangleCount());
+        }
         if (!job.IsLeaf() && i % step == 0 && i / step < PerLevel)
         {
           Jobs.push_back(job);
@@ -534,6 +540,8 @@ public:
   std::vector<PatchJob> Jobs;
   /// Per job: its level counted from the finest that simplifies (1) to the roots'.
   std::vector<int> Levels;
+  /// Per level: the triangles all its diamonds simplify in the build.
+  std::map<int, double> LevelTriangles;
 
 private:
   std::size_t PerLevel;
@@ -542,8 +550,9 @@ private:
 };
 
 /// Diamonds of a build of the mesh at `path`, up to `perLevel` of each level: their children's
-/// patches merged, one region per member, the build's quotas.
-std::vector<Case> Diamonds(const std::string& path, std::size_t perLevel)
+/// patches merged, one region per member, the build's quotas. levelTriangles gets the triangles
+/// each level simplifies in the whole build.
+std::vector<Case> Diamonds(const std::string& path, std::size_t perLevel, std::map<int, double>& levelTriangles)
 {
   RecordingRunner runner(perLevel);
   const std::string model = "/tmp/atp-bench-simplify-" + std::to_string(::getpid()) + ".atp";
@@ -585,6 +594,7 @@ std::vector<Case> Diamonds(const std::string& path, std::size_t perLevel)
       std::to_string(quotas.Members.front()) + " each";
     cases.push_back(std::move(diamond));
   }
+  levelTriangles = runner.LevelTriangles;
   return cases;
 }
 
@@ -625,11 +635,12 @@ int main(int argc, char** argv)
   const std::size_t target = positional.size() > 1 ? std::stoul(positional[1]) : 12000;
   const int chunks = positional.size() > 2 ? std::stoi(positional[2]) : 6;
   std::vector<Case> cases;
+  std::map<int, double> levelTriangles; // diamonds: each level's triangles in the whole build
   try
   {
     if (diamondsPerLevel > 0)
     {
-      cases = Diamonds(path, diamondsPerLevel);
+      cases = Diamonds(path, diamondsPerLevel, levelTriangles);
       std::printf("mesh %s: %zu diamonds of its build, up to %zu a level\n", path.c_str(), cases.size(),
         diamondsPerLevel);
     }
@@ -771,6 +782,24 @@ int main(int argc, char** argv)
       std::printf(" %d up %.2fx (%.0fk triangles);", level, figures[1] / figures[2], figures[0] / 1000);
     }
     std::printf("\n");
+    // Each level's sampled time per triangle, times the triangles the build simplifies there:
+    // the ratio the build itself sees.
+    double ours = 0, theirs = 0;
+    for (const auto& [level, figures] : byLevel)
+    {
+      const auto whole = levelTriangles.find(level);
+      if (figures[0] > 0 && whole != levelTriangles.end())
+      {
+        ours += whole->second * figures[1] / figures[0];
+        theirs += whole->second * figures[2] / figures[0];
+      }
+    }
+    if (theirs > 0)
+    {
+      std::printf("time against meshopt_simplify's, each level weighted by its triangles in the build: %.3fx"
+                  " with normals\n",
+        ours / theirs);
+    }
   }
   // Both run in the same process, input after input: the ratio holds still where this machine's
   // speed drifts (by 25-50% within minutes), so runs of different builds compare by it.
