@@ -22,10 +22,11 @@ public:
     std::uint32_t Vertex;
   };
 
-  /// The order of every queue: cheapest first, ties by vertex.
+  /// The order of every queue: cheapest first, ties by vertex. Bitwise rather than
+  /// short-circuit: sifting compares siblings in an order no branch predictor learns.
   static bool Before(const Entry& a, const Entry& b)
   {
-    return a.Cost < b.Cost || (a.Cost == b.Cost && a.Vertex < b.Vertex);
+    return (a.Cost < b.Cost) | ((a.Cost == b.Cost) & (a.Vertex < b.Vertex));
   }
 
   CollapseQueues(std::size_t queueCount, std::size_t vertexCount)
@@ -152,10 +153,8 @@ private:
     const std::size_t n = heap.size();
     for (std::size_t child = 2 * i + 1; child < n; child = 2 * i + 1)
     {
-      if (child + 1 < n && Before(heap[child + 1], heap[child]))
-      {
-        ++child;
-      }
+      // The smaller child, without a branch on which it is.
+      child += std::size_t(child + 1 < n && Before(heap[child + 1], heap[child]));
       if (!Before(heap[child], entry))
       {
         break;
