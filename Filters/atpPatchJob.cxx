@@ -109,13 +109,13 @@ PatchJobResult SimplifyDiamond(const PatchJobContext& context, PatchJob& job)
     parts.push_back(&c);
   }
   const DiamondQuotas quotas = QuotasOf(job, context.PatchBudget);
-  const MemberLocator locator(job.Members, context.Frame);
   SimplifyOptions options;
   options.TotalQuota = quotas.Total;
-  options.DeepRegionOf = [&locator](const double p[3], int likely) { return locator.DeepMemberOf(p, likely); };
   const PatchMesh merged = MergePatches(parts);
   job.Children.clear(); // one copy of the diamond in memory while it simplifies
   lap.Lap(result.Cpu.Prepare);
+  const MemberLocator locator(job.Members, context.Frame);
+  options.DeepRegionOf = [&locator](const double p[3], int likely) { return locator.DeepMemberOf(p, likely); };
   SimplifyResult simplified = Simplify(merged, int(job.Members.size()),
     [&locator](const double p[3], int likely) { return locator.MemberOf(p, likely); }, quotas.Members,
     options);
