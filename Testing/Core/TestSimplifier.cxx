@@ -331,6 +331,35 @@ TEST(Simplifier, OriginalBoundaryOnlyLosesVertices)
   }
 }
 
+// Where the original boundary meets the diamond-external border, the vertex joins an edge that
+// may shorten along the original boundary to one that is locked: it must stay, or the external
+// border would end somewhere else than the neighbor patch's.
+TEST(Simplifier, WhereTheOriginalBoundaryMeetsTheExternalBorderItStays)
+{
+  const int n = 40;
+  PatchMesh mesh = Grid(n, Bumps, true);
+  // The first half of side j = 0 (vertices i = 0..n/2; edge i -> i + 1 is corner 0 -> 1 of
+  // triangle 2i) becomes external: vertex n/2 joins it to the original rest of the side.
+  for (int i = 0; i < n / 2; ++i)
+  {
+    mesh.BoundaryEdges[2 * std::size_t(i)] &= std::uint8_t(~1u);
+  }
+  // A quota out of reach: every vertex that may move does.
+  const SimplifyResult result = Simplify(mesh, 1, OneRegion(), { 1 });
+  ASSERT_GT(result.Collapses, mesh.TriangleCount() / 4);
+  const std::set<PositionKey> kept = PositionsOf(Joined(result));
+  for (std::uint32_t i = 0; i <= std::uint32_t(n / 2); ++i)
+  {
+    EXPECT_TRUE(kept.count(KeyOf(mesh, i))) << "vertex " << i << " of the side moved";
+  }
+  int keptBeyond = 0; // the original part of the side, which may lose vertices
+  for (std::uint32_t i = std::uint32_t(n / 2) + 1; i < std::uint32_t(n); ++i)
+  {
+    keptBeyond += int(kept.count(KeyOf(mesh, i)));
+  }
+  EXPECT_LT(keptBeyond, n / 2 - 1) << "the original boundary next to it should simplify";
+}
+
 // A grid of bumps, free to simplify, with three defects whose vertices must all stay: a fin
 // standing on a row of its vertices (edges of three triangles), a small sheet touching it at one
 // vertex only (a fan of a disk and a wedge), and one triangle turned against its neighbors.

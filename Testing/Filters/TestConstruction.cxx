@@ -191,10 +191,25 @@ TEST_F(Construction, EveryCutIsCrackFree)
   const atp::PatchMesh finest = atp::ExtractCut(model, atp::SelectLevel(model, 64));
   EXPECT_EQ(finest.TriangleCount(), model.Header().InputTriangles);
   EXPECT_EQ(OpenEdges(finest).size(), inputBoundary);
+  std::set<Position> boundaryVertices;
+  for (const Edge& e : OpenEdges(finest))
+  {
+    boundaryVertices.insert(e.first);
+    boundaryVertices.insert(e.second);
+  }
+  // Open edges may only be the input's boundary, possibly simplified along itself: both ends
+  // on the input's boundary vertices.
+  const auto cracks = [&](const std::vector<Edge>& open) {
+    return std::count_if(open.begin(), open.end(), [&](const Edge& e) {
+      return !boundaryVertices.count(e.first) || !boundaryVertices.count(e.second);
+    });
+  };
+  const auto levelOf = [&](std::uint32_t node) { return atp::TetId{ model.Node(node).Tet }.Level(); };
 
   std::mt19937 random(11);
   std::uniform_real_distribution<double> unit(-1, 1), tolerance(0.3, 40), distance(0.5, 30);
   std::set<std::size_t> cutSizes;
+  int mixedCuts = 0;
   for (int view = 0; view < 40; ++view)
   {
     atp::ViewPoint v;
@@ -208,25 +223,34 @@ TEST_F(Construction, EveryCutIsCrackFree)
     v.TolerancePixels = tolerance(random);
     const std::vector<std::uint32_t> cut = atp::SelectCut(model, v);
     cutSizes.insert(cut.size());
-    const atp::PatchMesh mesh = atp::ExtractCut(model, cut);
-    // Open edges may only be the input's boundary, possibly simplified along itself: both ends
-    // on the input's boundary vertices, as many loops as the input has holes.
-    const std::vector<Edge> open = OpenEdges(mesh);
-    std::set<Position> boundaryVertices;
-    for (const Edge& e : OpenEdges(finest))
+    std::set<int> levels;
+    for (std::uint32_t node : cut)
     {
-      boundaryVertices.insert(e.first);
-      boundaryVertices.insert(e.second);
+      levels.insert(levelOf(node));
     }
-    for (const Edge& e : open)
-    {
-      ASSERT_TRUE(boundaryVertices.count(e.first) && boundaryVertices.count(e.second))
-        << "view " << view << ": a crack (open edge off the input's boundary)";
-    }
-    EXPECT_EQ(CountLoops(open), 3) << "view " << view;
+    mixedCuts += levels.size() >= 3;
+    const std::vector<Edge> open = OpenEdges(atp::ExtractCut(model, cut));
+    ASSERT_EQ(cracks(open), 0) << "view " << view << ": a crack (open edge off the input's boundary)";
+    EXPECT_EQ(CountLoops(open), 3) << "view " << view << ": as many loops as the input has holes";
     EXPECT_LE(open.size(), inputBoundary);
   }
   EXPECT_GT(cutSizes.size(), 10u) << "the views should give many different cuts";
+  EXPECT_GT(mixedCuts, 10) << "the views should give cuts that join levels";
+
+  // The check sees the cracks of a cut that refines one member of a diamond and not the others:
+  // the member's children end where the other members' patches no longer do.
+  const std::vector<std::uint32_t> level = atp::SelectLevel(model, int(model.Header().Depth) / 2);
+  std::size_t refined = 0;
+  while (refined < level.size() && model.Node(level[refined]).Children[0] < 0)
+  {
+    ++refined;
+  }
+  ASSERT_LT(refined, level.size());
+  std::vector<std::uint32_t> broken = level;
+  broken[refined] = std::uint32_t(model.Node(level[refined]).Children[0]);
+  broken.push_back(std::uint32_t(model.Node(level[refined]).Children[1]));
+  EXPECT_EQ(cracks(OpenEdges(atp::ExtractCut(model, level))), 0);
+  EXPECT_GT(cracks(OpenEdges(atp::ExtractCut(model, broken))), 0);
 }
 
 TEST_F(Construction, VerticesAreInputVerticesBorderBitExact)
@@ -274,6 +298,85 @@ TEST_F(Construction, VerticesAreInputVerticesBorderBitExact)
   }
   EXPECT_GT(border, 0u);
   EXPECT_GT(interior, 0u);
+}
+
+/// The diamond-external border of a diamond's mesh: its open edges with a corner off the input's
+/// boundary (the original boundary may lose vertices along itself, so its edges are left out),
+/// each as an ordered pair of positions.
+std::set<Edge> ExternalBorder(const atp::PatchMesh& mesh, const std::set<Position>& inputBoundary)
+{
+  std::set<Edge> border;
+  for (Edge e : OpenEdges(mesh))
+  {
+    if (!inputBoundary.count(e.first) || !inputBoundary.count(e.second))
+    {
+      border.insert(e.first < e.second ? e : Edge{ e.second, e.first });
+    }
+  }
+  return border;
+}
+
+TEST_F(Construction, LockedBordersAreBitExactAcrossLevels)
+{
+  // The vertices on a diamond's external border are locked (paper 5.2): the members' patches
+  // end exactly where their children's do, on the same edges between the same bit-identical
+  // positions.
+  const atp::ModelFile model = atp::ModelFile::Open(Path);
+  std::set<Position> inputBoundary;
+  for (const Edge& e : OpenEdges(atp::ExtractCut(model, atp::SelectLevel(model, 64))))
+  {
+    inputBoundary.insert(e.first);
+    inputBoundary.insert(e.second);
+  }
+  ASSERT_FALSE(inputBoundary.empty());
+  std::map<std::uint64_t, std::vector<std::uint32_t>> diamonds;
+  for (std::uint32_t i = 0; i < model.NodeCount(); ++i)
+  {
+    if (model.Node(i).Children[0] >= 0)
+    {
+      diamonds[atp::DiamondOf(atp::TetraOf(atp::TetId{ model.Node(i).Tet })).Bits].push_back(i);
+    }
+  }
+  std::size_t checkedEdges = 0, diamondsWithBorder = 0;
+  atp::PatchMesh sample; // a diamond's mesh with an external border, for the check below
+  for (const auto& [diamond, members] : diamonds)
+  {
+    std::vector<std::uint32_t> children;
+    for (std::uint32_t m : members)
+    {
+      children.push_back(std::uint32_t(model.Node(m).Children[0]));
+      children.push_back(std::uint32_t(model.Node(m).Children[1]));
+    }
+    const atp::PatchMesh coarse = atp::ExtractCut(model, members);
+    const std::set<Edge> before = ExternalBorder(atp::ExtractCut(model, children), inputBoundary);
+    const std::set<Edge> after = ExternalBorder(coarse, inputBoundary);
+    ASSERT_TRUE(before == after) << "diamond " << diamond << ": " << before.size()
+                                 << " external border edges below, " << after.size() << " above";
+    checkedEdges += after.size();
+    diamondsWithBorder += !after.empty();
+    if (!after.empty() && sample.VertexCount() == 0)
+    {
+      sample = coarse;
+    }
+  }
+  std::printf("%zu of %zu diamonds have an external border: %zu edges compared\n",
+    diamondsWithBorder, diamonds.size(), checkedEdges);
+  EXPECT_GT(diamondsWithBorder, diamonds.size() / 2);
+  EXPECT_GT(checkedEdges, 100u);
+
+  // The comparison sees a locked vertex moved by one step of float precision.
+  const std::set<Edge> border = ExternalBorder(sample, inputBoundary);
+  ASSERT_FALSE(border.empty());
+  const Position moved = border.begin()->first;
+  for (std::size_t v = 0; v < sample.VertexCount(); ++v)
+  {
+    float* p = &sample.Positions[3 * v];
+    if (Position{ { p[0], p[1], p[2] } } == moved)
+    {
+      p[0] = std::nextafter(p[0], 1e30f);
+    }
+  }
+  EXPECT_FALSE(ExternalBorder(sample, inputBoundary) == border);
 }
 
 TEST_F(Construction, ClosedSurfaceCutsHaveNoOpenEdge)
