@@ -1,6 +1,8 @@
 // Construction end to end, checked on the written model: no cracks in any cut, saturated bounds
-// equal over diamonds and monotone, quotas met, vertices never moved, determinism whatever the
-// thread count, corruption detected, and an interrupted build leaves nothing behind.
+// equal over diamonds and monotone, errors that bound the input, quotas met, vertices never
+// moved and locked borders kept across levels, determinism whatever the thread count,
+// corruption detected, and an interrupted build leaves nothing behind.
+#include "atpClosestPoint.h"
 #include "atpCut.h"
 #include "atpConstruction.h"
 #include "atpModelFile.h"
@@ -377,6 +379,68 @@ TEST_F(Construction, LockedBordersAreBitExactAcrossLevels)
     }
   }
   EXPECT_FALSE(ExternalBorder(sample, inputBoundary) == border);
+}
+
+TEST_F(Construction, ErrorBoundsTheInputAtEveryLevel)
+{
+  // What a cut relies on: every input vertex lies within the error of the patch nearest to it.
+  // (Not a theorem: a patch's error bounds its input's vertices, the children's, not every point
+  // of their triangles. Measured here on every level.)
+  const atp::ModelFile model = atp::ModelFile::Open(Path);
+  const atp::PatchMesh input = atp::ExtractCut(model, atp::SelectLevel(model, 64));
+  double worst = 0;
+  for (int level = 0; level < int(model.Header().Depth); ++level)
+  {
+    const std::vector<std::uint32_t> cut = atp::SelectLevel(model, level);
+    std::vector<std::uint32_t> patchOf;
+    const atp::PatchMesh mesh = atp::ExtractCut(model, cut, &patchOf);
+    std::vector<std::vector<std::uint32_t>> trianglesOf(cut.size());
+    for (std::uint32_t t = 0; t < patchOf.size(); ++t)
+    {
+      trianglesOf[patchOf[t]].push_back(t);
+    }
+    for (std::size_t v = 0; v < input.VertexCount(); ++v)
+    {
+      const double x[3] = { input.Positions[3 * v], input.Positions[3 * v + 1], input.Positions[3 * v + 2] };
+      double nearest = 1e300;
+      std::size_t nearestPatch = 0;
+      for (std::size_t i = 0; i < cut.size(); ++i)
+      {
+        const float* sphere = model.Node(cut[i]).Sphere;
+        const double c[3] = { sphere[0], sphere[1], sphere[2] };
+        if (std::sqrt(vtkMath::Distance2BetweenPoints(x, c)) - sphere[3] > nearest)
+        {
+          continue;
+        }
+        for (std::uint32_t t : trianglesOf[i])
+        {
+          double corner[3][3];
+          for (int k = 0; k < 3; ++k)
+          {
+            for (int a = 0; a < 3; ++a)
+            {
+              corner[k][a] = mesh.Positions[3 * std::size_t(mesh.Indices[3 * t + std::size_t(k)]) + std::size_t(a)];
+            }
+          }
+          const atp::TrianglePoint q = atp::ClosestOnTriangle(x, corner[0], corner[1], corner[2]);
+          const double d = std::sqrt(vtkMath::Distance2BetweenPoints(x, q.Point));
+          if (d < nearest)
+          {
+            nearest = d;
+            nearestPatch = i;
+          }
+        }
+      }
+      const atp::ModelNode& node = model.Node(cut[nearestPatch]);
+      if (nearest > 0)
+      {
+        worst = std::max(worst, nearest / double(node.Error));
+      }
+    }
+  }
+  std::printf("input vertices lie at most %.3f of the nearest patch's error from it\n", worst);
+  EXPECT_LE(worst, 1.0);
+  EXPECT_GT(worst, 0.5) << "errors should not overstate the distance by half";
 }
 
 TEST_F(Construction, ClosedSurfaceCutsHaveNoOpenEdge)
