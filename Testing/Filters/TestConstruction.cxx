@@ -10,6 +10,7 @@
 #include "atpQuantizationGrid.h"
 #include "atpTetra.h"
 #include "MeshEdges.h"
+#include "SmallestBall.h"
 #include "vtkATPBuilder.h"
 
 #include "vtkCallbackCommand.h"
@@ -511,6 +512,64 @@ TEST_F(Construction, SaturatedBoundsAreEqualOverDiamondsAndMonotone)
       ASSERT_LE(d, n.Sphere[3] + grid.MaxError() * 2) << "node " << i;
     }
   }
+}
+
+TEST_F(Construction, SpheresAreSmallestAndConesHoldTheNormalsBelow)
+{
+  // The cut culls with these: a sphere or cone that misses part of its patch would drop visible
+  // triangles, a sphere larger than needed would draw invisible ones.
+  const atp::ModelFile model = atp::ModelFile::Open(Path);
+  const atp::QuantizationGrid grid = model.PatchGrid();
+  const auto angle = [](const double* a, const float* b) {
+    const double lb = std::sqrt(double(b[0]) * b[0] + double(b[1]) * b[1] + double(b[2]) * b[2]);
+    const double la = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    return std::acos(std::max(-1.0, std::min(1.0, (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / (la * lb))));
+  };
+  const auto halfAngle = [](float cosine) { return std::acos(std::max(-1.0, std::min(1.0, double(cosine)))); };
+  atp::PatchMesh patch;
+  std::size_t narrowCones = 0;
+  for (std::uint32_t i = 0; i < model.NodeCount(); ++i)
+  {
+    const atp::ModelNode& n = model.Node(i);
+    atp::DecodePatch(model.PatchData(i), n.PatchBytes, grid, patch);
+    std::vector<atp::test::Point> points;
+    for (std::size_t v = 0; v < patch.VertexCount(); ++v)
+    {
+      const float* p = &patch.Positions[3 * v];
+      points.push_back(atp::test::Point{ { p[0], p[1], p[2] } });
+      const atp::test::Point center{ { n.Sphere[0], n.Sphere[1], n.Sphere[2] } };
+      ASSERT_LE(atp::test::Distance(points.back(), center), double(n.Sphere[3])) << "node " << i;
+    }
+    // Float storage adds about 1e-6 of the radius and the rounding of the center.
+    const double smallest = std::max(0.0, atp::test::SmallestBall(points).Radius); // 0: empty
+    EXPECT_LE(double(n.Sphere[3]), smallest * (1 + 4e-6) + 1e-6) << "node " << i;
+
+    // A cone holds the face normals of its patch and of every patch below it: the cut may cull
+    // a node's whole subtree by it.
+    for (std::size_t t = 0; t < patch.TriangleCount(); ++t)
+    {
+      const float* p[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        p[k] = &patch.Positions[3 * std::size_t(patch.Indices[3 * t + std::size_t(k)])];
+      }
+      const double e[3] = { double(p[1][0]) - p[0][0], double(p[1][1]) - p[0][1], double(p[1][2]) - p[0][2] };
+      const double f[3] = { double(p[2][0]) - p[0][0], double(p[2][1]) - p[0][1], double(p[2][2]) - p[0][2] };
+      const double normal[3] = { e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0] };
+      if (normal[0] == 0 && normal[1] == 0 && normal[2] == 0)
+      {
+        continue;
+      }
+      for (std::int32_t a = std::int32_t(i); a >= 0; a = model.Node(std::size_t(a)).Parent)
+      {
+        const atp::ModelNode& holder = model.Node(std::size_t(a));
+        ASSERT_LE(angle(normal, holder.ConeAxis), halfAngle(holder.ConeCos))
+          << "node " << a << ": a face normal of node " << i << " outside its cone";
+      }
+    }
+    narrowCones += n.ConeCos > 0; // under 90 degrees: can face away
+  }
+  EXPECT_GT(narrowCones, model.NodeCount() / 2) << "cones that cull nothing test nothing";
 }
 
 TEST_F(Construction, QuotasAreMetAndLevelsCoarsen)
