@@ -7,6 +7,7 @@
 #include "atpCut.h"
 #include "atpCutIndex.h"
 #include "atpModelFile.h"
+#include "atpPatchCodec.h"
 #include "atpTetra.h"
 
 #include "vtkCamera.h"
@@ -197,27 +198,91 @@ TEST(Cut, WhileLoadingTheCutStaysCrackFreeAndConvergesToTheFullCut)
   }
 }
 
+/// Whether nothing of the patch can be seen: each triangle lies outside one of the view's planes
+/// or faces away from the eye.
+bool Invisible(const atp::PatchMesh& patch, const atp::ViewPoint& view)
+{
+  for (std::size_t t = 0; t < patch.TriangleCount(); ++t)
+  {
+    double p[3][3];
+    for (int k = 0; k < 3; ++k)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        p[k][a] = patch.Positions[3 * std::size_t(patch.Indices[3 * t + std::size_t(k)]) + std::size_t(a)];
+      }
+    }
+    bool outside = false;
+    for (int i = 0; i < view.PlaneCount && !outside; ++i)
+    {
+      const double* plane = view.Planes[i];
+      outside = true;
+      for (const double* q : p)
+      {
+        outside = outside && plane[0] * q[0] + plane[1] * q[1] + plane[2] * q[2] + plane[3] < 0;
+      }
+    }
+    if (outside)
+    {
+      continue;
+    }
+    const double e[3] = { p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] };
+    const double f[3] = { p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] };
+    const double n[3] = { e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0] };
+    // Every point of a flat triangle is seen from the same side.
+    const double seen[3] = { view.Parallel ? view.Direction[0] : p[0][0] - view.Eye[0],
+      view.Parallel ? view.Direction[1] : p[0][1] - view.Eye[1],
+      view.Parallel ? view.Direction[2] : p[0][2] - view.Eye[2] };
+    const bool away = view.BackfaceCulling && n[0] * seen[0] + n[1] * seen[1] + n[2] * seen[2] > 0;
+    if (!away)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 TEST(Cut, CullingDropsOnlyInvisiblePatches)
 {
   const atp::ModelFile model = atp::ModelFile::Open(TorusModel());
+  const atp::QuantizationGrid grid = model.PatchGrid();
   std::mt19937 random(9);
-  std::size_t culledSome = 0;
+  std::size_t culledSome = 0, dropped = 0, visibleKept = 0;
+  atp::PatchMesh patch;
   for (int v = 0; v < 20; ++v)
   {
     atp::ViewPoint view = RandomView(random, true);
+    const atp::ViewPoint culling = view;
     const std::vector<std::uint32_t> culled = atp::SelectCut(model, view);
     view.PlaneCount = 0;
     view.BackfaceCulling = false;
     const std::vector<std::uint32_t> all = atp::SelectCut(model, view);
-    // Culling never changes which diamonds refine: the culled cut is a subset of the full one.
+    // Culling never changes which diamonds refine: the culled cut is a subset of the full one,
+    // and what it leaves out cannot be seen.
+    const std::set<std::uint32_t> culledSet(culled.begin(), culled.end());
     const std::set<std::uint32_t> allSet(all.begin(), all.end());
     for (const std::uint32_t n : culled)
     {
       EXPECT_TRUE(allSet.count(n));
     }
+    for (const std::uint32_t n : all)
+    {
+      atp::DecodePatch(model.PatchData(n), model.Node(n).PatchBytes, grid, patch);
+      if (!culledSet.count(n))
+      {
+        ++dropped;
+        EXPECT_TRUE(Invisible(patch, culling)) << "view " << v << ": node " << n << " was visible";
+      }
+      else
+      {
+        visibleKept += !Invisible(patch, culling);
+      }
+    }
     culledSome += culled.size() < all.size();
   }
+  std::printf("%zu patches culled, all invisible; %zu kept are visible\n", dropped, visibleKept);
   EXPECT_GT(culledSome, 5u);
+  EXPECT_GT(visibleKept, dropped / 4) << "the invisibility test should tell kept patches apart";
 }
 
 } // namespace
