@@ -925,6 +925,66 @@ TEST(Simplifier, PlanarGridHasNoError)
   EXPECT_LT(result.Error, 1e-6);
 }
 
+/// On a flat mesh over the xy square: the mean, over the input's vertices, of the difference
+/// between attribute(input, v) and the output's attribute interpolated at the vertex.
+template <typename Attribute>
+double MeanInterpolationError(const PatchMesh& input, const PatchMesh& output, Attribute attribute)
+{
+  double sum = 0;
+  for (std::uint32_t v = 0; v < input.VertexCount(); ++v)
+  {
+    const double x = input.Positions[3 * v], y = input.Positions[3 * v + 1];
+    double best = 1e300;
+    for (std::size_t t = 0; t < output.TriangleCount(); ++t)
+    {
+      const std::uint32_t* c = &output.Indices[3 * t];
+      const auto at = [&](int k, int a) { return double(output.Positions[3 * std::size_t(c[k]) + std::size_t(a)]); };
+      const double det = (at(1, 0) - at(0, 0)) * (at(2, 1) - at(0, 1)) - (at(2, 0) - at(0, 0)) * (at(1, 1) - at(0, 1));
+      const double s = ((x - at(0, 0)) * (at(2, 1) - at(0, 1)) - (at(2, 0) - at(0, 0)) * (y - at(0, 1))) / det;
+      const double u = ((at(1, 0) - at(0, 0)) * (y - at(0, 1)) - (x - at(0, 0)) * (at(1, 1) - at(0, 1))) / det;
+      if (s < -1e-9 || u < -1e-9 || s + u > 1 + 1e-9)
+      {
+        continue;
+      }
+      const double value = (1 - s - u) * attribute(output, c[0]) + s * attribute(output, c[1]) + u * attribute(output, c[2]);
+      best = std::min(best, std::abs(value - attribute(input, v)));
+    }
+    EXPECT_LT(best, 1e300) << "vertex " << v << " is not covered";
+    sum += best;
+  }
+  return sum / double(input.VertexCount());
+}
+
+TEST(Simplifier, NormalsAndColorsSteerTheCollapses)
+{
+  // A flat grid whose colors and normals change across a slanted line: positions alone give
+  // every collapse the same cost, so only the attributes' quadrics keep the line.
+  PatchMesh mesh = Grid(40, [](double, double) { return 0.0; }, false);
+  mesh.Colors.clear();
+  for (std::uint32_t v = 0; v < mesh.VertexCount(); ++v)
+  {
+    const bool left = mesh.Positions[3 * v] + 0.3f * mesh.Positions[3 * v + 1] < 0.6f;
+    mesh.Colors.insert(mesh.Colors.end(), { std::uint8_t(left ? 255 : 0), 0, std::uint8_t(left ? 0 : 255), 255 });
+    const float normal[3] = { left ? 0.f : 0.6f, 0.f, left ? 1.f : 0.8f };
+    std::copy(normal, normal + 3, &mesh.Normals[3 * std::size_t(v)]);
+  }
+  const auto red = [](const PatchMesh& m, std::uint32_t v) { return double(m.Colors[4 * std::size_t(v)]) / 255; };
+  const auto normalX = [](const PatchMesh& m, std::uint32_t v) { return double(m.Normals[3 * std::size_t(v)]); };
+  const auto errors = [&](double normalWeight, double colorWeight) {
+    SimplifyOptions options;
+    options.NormalWeight = normalWeight;
+    options.ColorWeight = colorWeight;
+    const PatchMesh out = Joined(Simplify(mesh, 1, OneRegion(), { 400 }, options));
+    EXPECT_LE(out.TriangleCount(), 400u);
+    return std::array<double, 2>{ { MeanInterpolationError(mesh, out, red), MeanInterpolationError(mesh, out, normalX) } };
+  };
+  const std::array<double, 2> neither = errors(0, 0), colors = errors(0, 0.005), normals = errors(0.002, 0);
+  std::printf("mean interpolation error of red / normal x: positions only %.4f / %.4f, with colors "
+              "%.4f, with normals %.4f\n", neither[0], neither[1], colors[0], normals[1]);
+  EXPECT_LT(colors[0], 0.5 * neither[0]);
+  EXPECT_LT(normals[1], 0.5 * neither[1]);
+}
+
 /// A star: one movable center inside a ring of four locked vertices (the ring's edges are the
 /// diamond's external boundary), so that every collapse is the center's onto a ring corner and
 /// leaves two of its four triangles, the ring split along a diagonal. The normal of a closed fan
