@@ -29,6 +29,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <functional>
 #include <iterator>
@@ -256,6 +257,54 @@ TEST_F(Construction, EveryCutIsCrackFree)
   EXPECT_GT(cracks(OpenEdges(atp::ExtractCut(model, broken))), 0);
 }
 
+TEST_F(Construction, FinestCutIsTheInputAndPatchesFollowTheNodes)
+{
+  // Leaves keep the input at full resolution: the finest cut holds exactly the input's triangles
+  // (corners on the model's grid, orientation kept), no more, no fewer.
+  const atp::ModelFile model = atp::ModelFile::Open(Path);
+  const atp::QuantizationGrid grid = model.PatchGrid();
+  using Triangle = std::array<Position, 3>;
+  const auto canonical = [](Triangle t) {
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    return t;
+  };
+  std::multiset<Triangle> input, finest;
+  for (vtkIdType c = 0; c < Mesh->GetNumberOfCells(); ++c)
+  {
+    vtkIdType count;
+    const vtkIdType* ids;
+    Mesh->GetCellPoints(c, count, ids);
+    Triangle t;
+    for (int k = 0; k < 3; ++k)
+    {
+      double p[3];
+      Mesh->GetPoint(ids[k], p);
+      const float f[3] = { float(p[0]), float(p[1]), float(p[2]) };
+      const std::array<std::uint32_t, 3> q = grid.Quantize(f);
+      grid.Dequantize(q.data(), t[std::size_t(k)].data());
+    }
+    input.insert(canonical(t));
+  }
+  const atp::PatchMesh cut = atp::ExtractCut(model, atp::SelectLevel(model, 64));
+  for (std::size_t i = 0; i < cut.TriangleCount(); ++i)
+  {
+    Triangle t;
+    for (int k = 0; k < 3; ++k)
+    {
+      std::copy_n(&cut.Positions[3 * std::size_t(cut.Indices[3 * i + std::size_t(k)])], 3, t[std::size_t(k)].data());
+    }
+    finest.insert(canonical(t));
+  }
+  EXPECT_EQ(finest.size(), input.size());
+  EXPECT_TRUE(finest == input);
+
+  // The patch repository in node order, each patch after the one before.
+  for (std::uint32_t i = 1; i < model.NodeCount(); ++i)
+  {
+    ASSERT_GE(model.Node(i).PatchOffset, model.Node(i - 1).PatchOffset + model.Node(i - 1).PatchBytes) << "node " << i;
+  }
+}
+
 TEST_F(Construction, VerticesAreInputVerticesBorderBitExact)
 {
   // Every vertex of every patch is an input vertex. Patch borders (the only vertices patches
@@ -442,6 +491,36 @@ TEST_F(Construction, ErrorBoundsTheInputAtEveryLevel)
   std::printf("input vertices lie at most %.3f of the nearest patch's error from it\n", worst);
   EXPECT_LE(worst, 1.0);
   EXPECT_GT(worst, 0.5) << "errors should not overstate the distance by half";
+}
+
+TEST_F(Construction, AVertexHasOneNormalInEveryPatchAndLevel)
+{
+  // Normals are computed once on the full-resolution mesh: a vertex that several patches share,
+  // side by side or across levels, decodes to the same normal bits in each, so shading has no
+  // seams between patches nor pops between levels.
+  const atp::ModelFile model = atp::ModelFile::Open(Path);
+  const atp::QuantizationGrid grid = model.PatchGrid();
+  std::map<Position, Position> normalAt;
+  std::size_t repeats = 0;
+  atp::PatchMesh patch;
+  for (std::uint32_t i = 0; i < model.NodeCount(); ++i)
+  {
+    atp::DecodePatch(model.PatchData(i), model.Node(i).PatchBytes, grid, patch);
+    ASSERT_EQ(patch.Normals.size(), patch.Positions.size());
+    for (std::size_t v = 0; v < patch.VertexCount(); ++v)
+    {
+      const float* p = &patch.Positions[3 * v];
+      const float* n = &patch.Normals[3 * v];
+      const auto [it, added] = normalAt.emplace(Position{ { p[0], p[1], p[2] } }, Position{ { n[0], n[1], n[2] } });
+      if (!added)
+      {
+        ++repeats;
+        ASSERT_TRUE(std::memcmp(it->second.data(), n, sizeof(float) * 3) == 0)
+          << "node " << i << ": vertex " << p[0] << " " << p[1] << " " << p[2] << " has another normal";
+      }
+    }
+  }
+  EXPECT_GT(repeats, normalAt.size() / 2) << "vertices should recur across patches and levels";
 }
 
 TEST_F(Construction, ClosedSurfaceCutsHaveNoOpenEdge)
