@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <iterator>
 #include <sstream>
 #include <unistd.h>
@@ -279,6 +280,12 @@ TEST(Builder, StreamsAFileToTheSameResult)
   EXPECT_EQ(fromFile->GetPartitionStats().Leaves, fromMemory->GetPartitionStats().Leaves);
   EXPECT_EQ(fromFile->GetPartitionStats().Depth, fromMemory->GetPartitionStats().Depth);
   EXPECT_EQ(fromFile->GetInputStats().BoundaryEdges, 160u);
+  const auto bytes = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  EXPECT_FALSE(bytes(fileModel.Path).empty());
+  EXPECT_TRUE(bytes(fileModel.Path) == bytes(memoryModel.Path)) << "the same model, byte for byte";
 }
 
 // The fast cache order only reorders each patch's triangles: the same tree, the same
