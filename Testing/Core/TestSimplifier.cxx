@@ -478,6 +478,28 @@ TEST(Simplifier, ClosedMeshStaysClosed)
   EXPECT_EQ(EulerCharacteristic(out), 0);
 }
 
+TEST(Simplifier, BordersBetweenRegionsAreFree)
+{
+  // A diamond's members meet inside its mesh: their border is no boundary of the mesh, and its
+  // vertices simplify like any other (only the diamond's external border is locked).
+  const int n = 40;
+  const PatchMesh mesh = Grid(n, Bumps, false); // every open edge external: locked
+  const RegionFunction side = [](const double p[3], int) { return p[0] < 0.5 ? 0 : 1; };
+  const SimplifyResult result = Simplify(mesh, 2, side, { 300, 300 });
+  EXPECT_TRUE(result.QuotasMet());
+  const std::set<PositionKey> kept = PositionsOf(Joined(result));
+  int onBorder = 0; // interior vertices on the line x = 0.5 between the regions
+  for (int j = 1; j < n; ++j)
+  {
+    onBorder += int(kept.count(KeyOf(mesh, std::uint32_t(j * (n + 1) + n / 2))));
+  }
+  EXPECT_LT(onBorder, (n - 1) / 2) << "the border between the regions should lose vertices";
+  for (int i = 0; i <= n; ++i)
+  {
+    EXPECT_TRUE(kept.count(KeyOf(mesh, std::uint32_t(i)))) << "a locked vertex moved";
+  }
+}
+
 TEST(Simplifier, QuotasPerRegion)
 {
   const PatchMesh mesh = Grid(60, Bumps, true);
