@@ -22,6 +22,12 @@ expect 0 "done: .* triangles/s, peak memory" -- "$atp" build "$data/bumpy-torus.
 expect 0 "partition: [0-9]+ leaves" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/x.atp" --leaf-capacity 500 --bucket-memory 1
 [ -s "$work/x.atp" ] || { echo "FAIL: atp build wrote no model"; failures=$((failures + 1)); }
 expect 0 "cpu: partition [0-9.]+s, construction [0-9.]+s in this process; jobs: leaves [0-9.]+s" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/x.atp" --quiet
+# On a terminal (script gives the build one) a progress bar with rate and ETA; off one, a line
+# per tenth with the time elapsed.
+expect 0 "simplifying \[#+ *\] +[0-9.]+%  [0-9.]+k? triangles/s  ETA [0-9]+:[0-9][0-9]" -- \
+  script -qec "$(printf '%q ' "$atp" build "$data/bumpy-torus.ply" -o "$work/eta.atp")" /dev/null
+expect 0 "simplifying: +100%  .*elapsed [0-9]+:[0-9][0-9]" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/eta.atp"
+grep -q "ETA" <<<"$out" && fail "ETA off a terminal"
 expect 0 "simplify: [0-9]+ diamonds" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/y.atp" --threads 1 --patch-budget 1000
 expect 0 "model: [0-9]+ nodes, [0-9]+ levels" -- "$atp" info "$work/x.atp"
 expect 0 '"bytes_per_input_triangle"' -- "$atp" info --json "$work/x.atp"
@@ -59,7 +65,7 @@ cmp -s "$work/x.atp" "$work/keep.atp" || { echo "FAIL: a failed build changed th
 
 # A full scratch disk (a file size limit stands in for it): an error, not a crash.
 expect 1 "cannot write scratch data.*(File too large|No space)" -- bash -c "ulimit -f 2048; exec '$atp' build '$data/bumpy-torus.ply' -o '$work/full.atp' --bucket-memory 1 --scratch '$work' --quiet"
-[ -z "$(ls "$work" | grep -v -E '^(x|y|keep|fast)\.atp$|\.ply$')" ] || { echo "FAIL: files left behind: $(ls "$work")"; failures=$((failures + 1)); }
+[ -z "$(ls "$work" | grep -v -E '^(x|y|keep|fast|eta)\.atp$|\.ply$')" ] || { echo "FAIL: files left behind: $(ls "$work")"; failures=$((failures + 1)); }
 
 # atp extract: a level or a camera's cut as PLY, VTP or STL, read back by the builder's own
 # readers; mistakes and failed writes are one line, a non-zero exit and no file.
