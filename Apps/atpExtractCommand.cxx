@@ -110,7 +110,7 @@ int ExtractCommand(const std::vector<std::string>& arguments)
 
   // Written beside OUT and renamed when complete: a failed write leaves no file that looks
   // like a mesh, and an existing OUT untouched.
-  PendingFile pending(out, "mesh");
+  PendingFile pending(out, "mesh", { cl.Positional(0) });
   const std::string& partial = pending.PartialPath();
   const vtkSmartPointer<vtkAlgorithm> writer = WriterFor(out, partial);
 

@@ -1,26 +1,25 @@
 #include "atpPendingFile.h"
 
 #include "atpCommandLine.h"
+#include "atpOutputPath.h"
 
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 namespace atp
 {
 
-PendingFile::PendingFile(std::string path, std::string what)
+PendingFile::PendingFile(std::string path, std::string what, const std::vector<std::string>& inputs)
   : FinalPath(std::move(path))
   , What(std::move(what))
 {
-  struct stat existing{};
-  if (FinalPath.empty() || FinalPath.back() == '/' ||
-    (::stat(FinalPath.c_str(), &existing) == 0 && S_ISDIR(existing.st_mode)))
+  const std::string problem = OutputPathProblem(FinalPath, inputs);
+  if (!problem.empty())
   {
-    throw Failure("not a file name"); // found now, not when renaming after the work
+    throw Failure(problem); // found now, not when renaming after the work
   }
   Partial = FinalPath + ".partial-" + std::to_string(::getpid()) + FileExtension(FinalPath);
   const int fd = ::open(Partial.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);

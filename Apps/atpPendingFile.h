@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace atp
 {
@@ -13,9 +14,10 @@ class PendingFile
 {
 public:
   /// Creates the partial file at once, so an unwritable place is reported before any long
-  /// work. `what` names the content for messages ("mesh", "plot"). Throws std::runtime_error
+  /// work (as is any other OutputPathProblem; `inputs` are the files the command reads).
+  /// `what` names the content for messages ("mesh", "plot"). Throws std::runtime_error
   /// "PATH: cannot write the WHAT: reason".
-  PendingFile(std::string path, std::string what);
+  PendingFile(std::string path, std::string what, const std::vector<std::string>& inputs = {});
   /// Removes the partial file unless committed.
   ~PendingFile();
 

@@ -1,5 +1,7 @@
 #include "atpSurfaceGenerator.h"
 
+#include "atpOutputPath.h"
+
 #include <cerrno>
 #include <array>
 #include <algorithm>
@@ -23,7 +25,7 @@ public:
   // Writes to a side file renamed over `path` only when complete, so a failed run never
   // leaves a truncated mesh that looks like a real one.
   explicit BufferedFile(const std::string& path)
-    : Path(path)
+    : Path(Checked(path))
     , PartialPath(path + ".partial")
     , File(std::fopen(PartialPath.c_str(), "wb"))
   {
@@ -40,6 +42,16 @@ public:
       std::fclose(File);
       std::remove(PartialPath.c_str());
     }
+  }
+  /// `path`, unless it cannot take the new file (OutputPathProblem): found before the work.
+  static const std::string& Checked(const std::string& path)
+  {
+    const std::string problem = OutputPathProblem(path);
+    if (!problem.empty())
+    {
+      throw std::runtime_error(path + ": " + problem);
+    }
+    return path;
   }
   template <typename T>
   void Put(const T& value)

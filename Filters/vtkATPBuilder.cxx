@@ -2,6 +2,7 @@
 
 #include "atpConstruction.h"
 #include "atpCpuTime.h"
+#include "atpOutputPath.h"
 #include "atpStreamPartition.h"
 #include "atpTriangleSource.h"
 #include "atpPolyDataTriangleSource.h"
@@ -42,6 +43,8 @@ namespace
 // partitioning's share.
 constexpr double PartitionShare = 0.15;
 constexpr double ContourShare = 0.1;
+/// How messages name a vtkPolyData input.
+constexpr const char* PolyDataInputName = "input polydata";
 
 double SecondsSince(std::chrono::steady_clock::time_point start)
 {
@@ -123,7 +126,14 @@ int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, v
   {
     auto phaseStart = std::chrono::steady_clock::now(); // opening reads the input once
     double phaseCpuStart = atp::ProcessCpuSeconds();
+    const std::string outputProblem = atp::OutputPathProblem(this->FileName,
+      this->InputFileName ? std::vector<std::string>{ this->InputFileName } : std::vector<std::string>{});
+    if (!outputProblem.empty())
+    {
+      throw std::runtime_error(std::string(this->FileName) + ": " + outputProblem);
+    }
     std::unique_ptr<atp::TriangleSource> source = this->OpenSource(inputs);
+    atp::CheckCoordinateRange(source->Bounds(), this->InputFileName ? this->InputFileName : PolyDataInputName);
     atp::PartitionOptions options;
     options.LeafCapacity = std::uint32_t(this->LeafCapacity);
     options.BucketMemoryBytes = std::size_t(this->BucketMemoryMiB) << 20;
@@ -225,7 +235,7 @@ std::unique_ptr<atp::TriangleSource> vtkATPBuilder::OpenSource(vtkInformationVec
       throw std::invalid_argument("an IsoValue is only for a volume InputFileName");
     }
     vtkPolyData* mesh = vtkPolyData::GetData(inputs[0]);
-    return atp::OpenPolyDataTriangleSource(mesh, "input polydata", scratch);
+    return atp::OpenPolyDataTriangleSource(mesh, PolyDataInputName, scratch);
   }
   const std::string path = this->InputFileName;
   if (!this->RawLayout && !atp::IsVolumeFileName(path))

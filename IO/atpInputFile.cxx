@@ -27,7 +27,9 @@ MappedRegion::~MappedRegion()
 InputFile::InputFile(const std::string& path)
   : Name(path)
 {
-  this->Descriptor = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  // Non-blocking: opening a FIFO would wait for a writer before the check below refuses it.
+  // Reads of a regular file ignore the flag.
+  this->Descriptor = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (this->Descriptor < 0)
   {
     this->Fail(std::string("cannot open: ") + std::strerror(errno));

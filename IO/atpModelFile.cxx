@@ -89,7 +89,8 @@ ModelFile ModelFile::Open(const std::string& path)
 {
   ModelFile file;
   file.FilePath = path;
-  const FileDescriptor fd{ ::open(path.c_str(), O_RDONLY | O_CLOEXEC) };
+  // Non-blocking: opening a FIFO would wait for a writer before the check below refuses it.
+  const FileDescriptor fd{ ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK) };
   struct stat info;
   if (fd.Fd < 0 || ::fstat(fd.Fd, &info) != 0)
   {

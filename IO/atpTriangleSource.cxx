@@ -8,11 +8,31 @@
 #include "atpVtpReader.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cctype>
 
 namespace atp
 {
 TriangleSource::~TriangleSource() = default;
+
+void CheckCoordinateRange(const Box& bounds, const std::string& inputName)
+{
+  double largest = 0;
+  for (int a = 0; a < 3 && !bounds.IsEmpty(); ++a)
+  {
+    largest = std::max({ largest, std::abs(bounds.Min[a]), std::abs(bounds.Max[a]) });
+  }
+  if (largest > MaxCoordinate)
+  {
+    char text[160];
+    std::snprintf(text, sizeof text,
+      ": a coordinate of magnitude %.3g; models keep positions and errors as 32-bit floats, so "
+      "coordinates must lie within +-%.0e",
+      largest, MaxCoordinate);
+    throw InputError(inputName + text);
+  }
+}
 
 std::unique_ptr<TriangleSource> OpenTriangleSource(
   const std::string& path, const std::string& scratchDirectory)

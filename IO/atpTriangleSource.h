@@ -90,6 +90,13 @@ public:
   virtual bool HasColors() const { return false; }
 };
 
+/// A model keeps positions, bounds and errors as 32-bit floats: an input reaching near FLT_MAX
+/// (3.4e38) would give bounds and errors no reader accepts. Inputs lie within +-MaxCoordinate,
+/// far below it and far beyond any real data.
+constexpr double MaxCoordinate = 1e36;
+/// Throws InputError naming the input when the box reaches beyond +-MaxCoordinate.
+VTKATPIO_EXPORT void CheckCoordinateRange(const Box& bounds, const std::string& inputName);
+
 /// Opens PLY (ASCII or binary), OBJ, STL (ASCII or binary) or VTP by file extension.
 /// Large inputs (PLY, OBJ, STL) are streamed; VTP is read in memory by VTK.
 /// `scratchDirectory` receives temporary arrays (removed when the source is destroyed).

@@ -1,6 +1,7 @@
 #include "atpVolumeSlabs.h"
 
 #include "atpInputFile.h"
+#include "atpNiftiHeader.h"
 #include "atpTriangleSource.h" // InputError
 #include "atpVtkErrors.h"
 
@@ -147,6 +148,11 @@ VolumeSlabReader VolumeSlabReader::Open(const std::string& path, const RawVolume
   }
   if (IsNiftiFileName(path))
   {
+    const std::string problem = NiftiHeaderProblem(path);
+    if (!problem.empty())
+    {
+      file.Fail(problem);
+    }
     auto reader = vtkSmartPointer<vtkNIFTIImageReader>::New();
     reader->SetFileName(path.c_str());
     VolumeSlabReader volume(reader, path);

@@ -57,6 +57,26 @@ printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty floa
 expect 1 "nan.ply.*(non-finite|nan)" -- "$atp" build "$work/nan.ply" -o "$work/x.atp"
 printf 'ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n' > "$work/empty.ply"
 expect 1 "empty.ply.*empty" -- "$atp" build "$work/empty.ply" -o "$work/x.atp"
+# Coordinates near FLT_MAX would give a model of infinite bounds: refused; large ones build.
+printf 'v -3e38 -3e38 -3e38\nv 3e38 -3e38 -3e38\nv 0 3e38 -3e38\nv 0 0 3e38\nf 1 2 3\nf 1 2 4\nf 2 3 4\nf 1 3 4\n' > "$work/huge.obj"
+expect 1 "huge.obj: a coordinate of magnitude 3e\+38; .* within \+-1e\+36" -- "$atp" build "$work/huge.obj" -o "$work/huge.atp"
+sed 's/3e38/1e35/g' "$work/huge.obj" > "$work/large.obj"
+expect 0 "done: " -- "$atp" build "$work/large.obj" -o "$work/large.atp" --quiet
+expect 0 "large.atp: valid" -- "$atp" verify "$work/large.atp"
+rm -f "$work/huge.obj" "$work/large.obj" "$work/large.atp"
+# A FIFO is no input file (opening it would wait for a writer), nor an output to replace.
+mkfifo "$work/fifo.ply" "$work/fifo.atp"
+expect 1 "fifo.ply: not a regular file" -- timeout 60 "$atp" build "$work/fifo.ply" -o "$work/x.atp"
+expect 1 "fifo.atp: not a regular file" -- timeout 60 "$atp" info "$work/fifo.atp"
+expect 1 "fifo.atp: exists and is not a regular file: refusing to replace it" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/fifo.atp"
+[ -p "$work/fifo.atp" ] || fail "the FIFO given as output was replaced"
+rm -f "$work/fifo.ply" "$work/fifo.atp"
+# Nor may a build replace its own input, or start with a name its side file cannot extend.
+cp "$data/bumpy-torus.ply" "$work/self.ply"
+expect 1 "self.ply: is the input .*self.ply: refusing to replace it" -- "$atp" build "$work/self.ply" -o "$work/self.ply"
+cmp -s "$data/bumpy-torus.ply" "$work/self.ply" || fail "a build replaced its own input"
+rm -f "$work/self.ply"
+expect 1 "file name too long" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/$(printf 'a%.0s' $(seq 240)).atp"
 expect 1 "scratch" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/x.atp" --scratch "$work/no/such/dir"
 # A failed build leaves an existing model as it was.
 cp "$work/x.atp" "$work/keep.atp"

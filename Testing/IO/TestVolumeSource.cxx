@@ -35,6 +35,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -603,7 +604,8 @@ TEST_F(VolumeSource, Errors)
   this->ExpectError(this->Path("short.raw"),
     "1073741824x1073741824x1073741824 uint16 voxels are more than 2^64 bytes", 0.5, &huge);
   this->ExpectError(this->Write("volume.img3", "data"), "not a volume file");
-  this->ExpectError(this->Write("garbage.nii", std::string(400, 'x')), "not a readable volume");
+  this->ExpectError(this->Write("garbage.nii", std::string(400, 'x')), "not a NIfTI header");
+  this->ExpectError(this->Write("short.nii", std::string(100, '\0')), "348 bytes or more");
   this->ExpectError(this->Write("garbage.vti", "<VTKFile type=\"ImageData\">"), "not a readable volume");
 
   // Iso outside the data: no surface, and the message gives the range.
@@ -653,6 +655,20 @@ TEST_F(VolumeSource, Errors)
   fs::copy_file(this->Path("whole.nii"), this->Path("cut.nii"));
   fs::resize_file(this->Path("cut.nii"), fs::file_size(this->Path("whole.nii")) - 600);
   this->ExpectError(this->Path("cut.nii"), "truncated", 2.5);
+
+  // Datatypes VTK's reader cannot take (some crash it) or that contradict the bits per voxel
+  // (the NIfTI-1 header's datatype at byte 70, bitpix at 72), refused first.
+  const auto patched = [&](const std::string& name, std::int16_t datatype, std::int16_t bitpix) {
+    std::ifstream in(this->Path("whole.nii"), std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::memcpy(&bytes[70], &datatype, 2);
+    std::memcpy(&bytes[72], &bitpix, 2);
+    return this->Write(name, bytes);
+  };
+  this->ExpectError(patched("float128.nii", 1536, 128), "NIfTI datatype 1536 is not one scalar per voxel", 2.5);
+  this->ExpectError(patched("unknown.nii", 12345, 32), "NIfTI datatype 12345 is not one scalar per voxel", 2.5);
+  this->ExpectError(patched("rgb.nii", 128, 24), "NIfTI datatype 128 is not one scalar per voxel", 2.5);
+  this->ExpectError(patched("bits.nii", 16, 8), "datatype 16 has 32 bits per voxel, the header says 8", 2.5);
 }
 
 } // namespace

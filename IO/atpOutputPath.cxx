@@ -1,0 +1,47 @@
+#include "atpOutputPath.h"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace atp
+{
+
+std::string OutputPathProblem(const std::string& path, const std::vector<std::string>& inputs)
+{
+  if (path.empty() || path.back() == '/')
+  {
+    return "not a file name";
+  }
+  struct stat existing{};
+  if (::stat(path.c_str(), &existing) == 0)
+  {
+    if (S_ISDIR(existing.st_mode))
+    {
+      return "is a directory";
+    }
+    if (!S_ISREG(existing.st_mode))
+    {
+      return "exists and is not a regular file: refusing to replace it";
+    }
+    for (const std::string& input : inputs)
+    {
+      struct stat in{};
+      if (::stat(input.c_str(), &in) == 0 && in.st_dev == existing.st_dev && in.st_ino == existing.st_ino)
+      {
+        return "is the input " + input + ": refusing to replace it";
+      }
+    }
+  }
+  const std::size_t slash = path.rfind('/');
+  const std::string directory = slash == std::string::npos ? "." : path.substr(0, slash + 1);
+  const std::size_t nameBytes = path.size() - (slash == std::string::npos ? 0 : slash + 1);
+  const long limit = ::pathconf(directory.c_str(), _PC_NAME_MAX);
+  if (limit > 0 && nameBytes + SideFileSuffixBytes > std::size_t(limit))
+  {
+    return "file name too long: at most " + std::to_string(std::size_t(limit) - SideFileSuffixBytes) +
+      " bytes leave room for the name of the file written before it";
+  }
+  return std::string();
+}
+
+} // namespace atp
