@@ -12,6 +12,7 @@ packages=(
   libtet1.5-dev          # TetGen: conformity checks in tests
   libmeshoptimizer-dev   # vertex-cache order, index/vertex codecs
   libxxhash-dev          # patch and section checksums (XXH3)
+  zlib1g-dev             # reading the header of a .nii.gz before VTK does (VTK::zlib)
   libopenmpi-dev openmpi-bin   # VTK 9.1 on Debian links MPI; distributed build
   xvfb xauth             # headless rendering for tests
   clang libclang-rt-14-dev   # libFuzzer for scripts/fuzz.sh
