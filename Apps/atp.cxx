@@ -352,6 +352,17 @@ int main(int argc, char** argv)
   }
   // A file size limit (ulimit -f) must fail the write with an error we report, not kill us.
   std::signal(SIGXFSZ, SIG_IGN);
+  // Inputs are read through memory maps: when another program truncates a file meanwhile, the
+  // next read of a page past its new end raises SIGBUS. A message and exit code 1, not a crash
+  // (models are read through CopyFromMapping, whose own handler reports it as an error).
+  struct sigaction shrunk{};
+  shrunk.sa_handler = [](int) {
+    static const char message[] = "atp: error: a file shrank while being read (truncated or "
+                                  "rewritten by another program)\n";
+    [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, message, sizeof message - 1);
+    ::_exit(1);
+  };
+  ::sigaction(SIGBUS, &shrunk, nullptr);
   const std::string command = argv[1];
   // atp build --mpi: every rank runs this program; ranks other than 0 are workers.
   std::optional<atp::MpiSession> mpi;

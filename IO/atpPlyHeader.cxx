@@ -134,9 +134,11 @@ PlyHeader ReadPlyHeader(const InputFile& file)
     else if (words[0] == "element")
     {
       PlyElement element;
-      if (words.size() != 3 ||
-        std::from_chars(words[2].data(), words[2].data() + words[2].size(), element.Count).ptr !=
-          words[2].data() + words[2].size())
+      const char* end = words.size() == 3 ? words[2].data() + words[2].size() : nullptr;
+      // A count past 2^64 is out of range, not zero.
+      const std::from_chars_result count =
+        end ? std::from_chars(words[2].data(), end, element.Count) : std::from_chars_result{};
+      if (!end || count.ptr != end || count.ec != std::errc())
       {
         fail(line, "expected 'element <name> <count>'");
       }

@@ -1060,6 +1060,10 @@ TEST_F(TriangleSources, BadPlyHeaders)
   this->ExpectError(
     this->Write("g.ply", "ply\nformat ascii 1.0\nelement vertex many\nend_header\n"),
     "expected 'element <name> <count>'");
+  // 2^64: out of range, not read as zero (an extra element so counted was skipped unread).
+  this->ExpectError(this->Write("g2.ply",
+                      "ply\nformat ascii 1.0\n" + v + f + "element extra 18446744073709551616\nend_header\n"),
+    "expected 'element <name> <count>'");
   this->ExpectError(
     this->Write("h.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty int64 x\nend_header\n"),
     "unsupported PLY property type 'int64'");
