@@ -2,6 +2,7 @@
 // independent Welzl), the saturated sphere holds its spheres, storage in floats only grows them,
 // and cones of normals hold every face normal and every cone they were made of.
 #include "atpBounds.h"
+#include "FaceNormal.h"
 #include "SmallestBall.h"
 
 #include <gtest/gtest.h>
@@ -56,21 +57,14 @@ atp::PatchMesh Bumps(int n, double height)
   return mesh;
 }
 
-/// Every face normal of the patch, in double from its float corners; degenerate faces left out.
+/// Every face normal of the patch; degenerate faces left out.
 std::vector<Point> FaceNormals(const atp::PatchMesh& mesh)
 {
   std::vector<Point> normals;
   for (std::size_t t = 0; t < mesh.TriangleCount(); ++t)
   {
-    const float* p[3];
-    for (int k = 0; k < 3; ++k)
-    {
-      p[k] = &mesh.Positions[3 * std::size_t(mesh.Indices[3 * t + std::size_t(k)])];
-    }
-    const double e[3] = { double(p[1][0]) - p[0][0], double(p[1][1]) - p[0][1], double(p[1][2]) - p[0][2] };
-    const double f[3] = { double(p[2][0]) - p[0][0], double(p[2][1]) - p[0][1], double(p[2][2]) - p[0][2] };
-    const Point n{ { e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0] } };
-    if (n[0] != 0 || n[1] != 0 || n[2] != 0)
+    const Point n = atp::test::FaceNormal(mesh, t);
+    if (!atp::test::IsZero(n))
     {
       normals.push_back(n);
     }

@@ -9,6 +9,7 @@
 #include "atpPatchCodec.h"
 #include "atpQuantizationGrid.h"
 #include "atpTetra.h"
+#include "FaceNormal.h"
 #include "MeshEdges.h"
 #include "SmallestBall.h"
 #include "vtkATPBuilder.h"
@@ -627,22 +628,15 @@ TEST_F(Construction, SpheresAreSmallestAndConesHoldTheNormalsBelow)
     // a node's whole subtree by it.
     for (std::size_t t = 0; t < patch.TriangleCount(); ++t)
     {
-      const float* p[3];
-      for (int k = 0; k < 3; ++k)
-      {
-        p[k] = &patch.Positions[3 * std::size_t(patch.Indices[3 * t + std::size_t(k)])];
-      }
-      const double e[3] = { double(p[1][0]) - p[0][0], double(p[1][1]) - p[0][1], double(p[1][2]) - p[0][2] };
-      const double f[3] = { double(p[2][0]) - p[0][0], double(p[2][1]) - p[0][1], double(p[2][2]) - p[0][2] };
-      const double normal[3] = { e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0] };
-      if (normal[0] == 0 && normal[1] == 0 && normal[2] == 0)
+      const std::array<double, 3> normal = atp::test::FaceNormal(patch, t);
+      if (atp::test::IsZero(normal))
       {
         continue;
       }
       for (std::int32_t a = std::int32_t(i); a >= 0; a = model.Node(std::size_t(a)).Parent)
       {
         const atp::ModelNode& holder = model.Node(std::size_t(a));
-        ASSERT_LE(angle(normal, holder.ConeAxis), halfAngle(holder.ConeCos))
+        ASSERT_LE(angle(normal.data(), holder.ConeAxis), halfAngle(holder.ConeCos))
           << "node " << a << ": a face normal of node " << i << " outside its cone";
       }
     }

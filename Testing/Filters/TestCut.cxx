@@ -1,5 +1,6 @@
 // The view-dependent cut: culling primitives, the diamond index, and the residency-aware cut
 // that the renderer relies on (conforming while patches load, converging to the full cut).
+#include "FaceNormal.h"
 #include "MeshEdges.h"
 #include "TestModel.h"
 
@@ -15,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 #include <set>
@@ -226,9 +228,7 @@ bool Invisible(const atp::PatchMesh& patch, const atp::ViewPoint& view)
     {
       continue;
     }
-    const double e[3] = { p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2] };
-    const double f[3] = { p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2] };
-    const double n[3] = { e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0] };
+    const std::array<double, 3> n = FaceNormal(patch, t);
     // Every point of a flat triangle is seen from the same side.
     const double seen[3] = { view.Parallel ? view.Direction[0] : p[0][0] - view.Eye[0],
       view.Parallel ? view.Direction[1] : p[0][1] - view.Eye[1],
