@@ -3,14 +3,82 @@
 #include "atpCommandLine.h"
 #include "atpOutputPath.h"
 
+#include <atomic>
 #include <cerrno>
+#include <climits>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
+#include <mutex>
 #include <unistd.h>
 
 namespace atp
 {
+namespace
+{
+/// The partial files of this process, removed by a handler when SIGINT, SIGTERM or SIGHUP ends
+/// it (a process killed by SIGKILL leaves them, under their ".partial-PID" names, never the
+/// output's). A slot is Free, being Filled by its owner, or Ready for the handler.
+enum SlotState : int
+{
+  Free,
+  Filled,
+  Ready
+};
+constexpr std::size_t Slots = 8;
+char SlotPath[Slots][PATH_MAX];
+std::atomic<int> SlotStates[Slots];
+
+void RemovePartialsAndEnd(int signal)
+{
+  for (std::size_t i = 0; i < Slots; ++i)
+  {
+    if (SlotStates[i].load() == Ready)
+    {
+      ::unlink(SlotPath[i]);
+    }
+  }
+  ::signal(signal, SIG_DFL);
+  ::raise(signal);
+}
+
+/// The slot holding `path` for the handler, or -1 when none is free (or the path is too long):
+/// that partial file is then only removed by the destructor.
+int Register(const std::string& path)
+{
+  static std::once_flag installed;
+  std::call_once(installed, [] {
+    for (const int signal : { SIGINT, SIGTERM, SIGHUP })
+    {
+      struct sigaction previous{};
+      if (::sigaction(signal, nullptr, &previous) == 0 && previous.sa_handler == SIG_DFL)
+      {
+        ::signal(signal, RemovePartialsAndEnd); // an ignored signal stays ignored
+      }
+    }
+  });
+  for (std::size_t i = 0; i < Slots && path.size() < PATH_MAX; ++i)
+  {
+    int expected = Free;
+    if (SlotStates[i].compare_exchange_strong(expected, Filled))
+    {
+      std::memcpy(SlotPath[i], path.c_str(), path.size() + 1);
+      SlotStates[i].store(Ready);
+      return int(i);
+    }
+  }
+  return -1;
+}
+
+void Unregister(int slot)
+{
+  if (slot >= 0)
+  {
+    SlotStates[std::size_t(slot)].store(Free);
+  }
+}
+} // namespace
 
 PendingFile::PendingFile(std::string path, std::string what, const std::vector<std::string>& inputs)
   : FinalPath(std::move(path))
@@ -28,10 +96,12 @@ PendingFile::PendingFile(std::string path, std::string what, const std::vector<s
     throw Failure(std::strerror(errno));
   }
   ::close(fd);
+  Slot = Register(Partial);
 }
 
 PendingFile::~PendingFile()
 {
+  Unregister(Slot);
   if (!Committed)
   {
     std::remove(Partial.c_str());
@@ -49,6 +119,8 @@ void PendingFile::Commit()
   {
     throw Failure(std::strerror(errno));
   }
+  Unregister(Slot); // the name is the output's now
+  Slot = -1;
   Committed = true;
 }
 

@@ -1,5 +1,6 @@
 // An output file written beside its final name and renamed into place only when complete: a
-// failed or interrupted command leaves no half-written file, and an existing one untouched.
+// failed or interrupted command (SIGINT, SIGTERM, SIGHUP) leaves no half-written file, and an
+// existing one untouched.
 #ifndef atpPendingFile_h
 #define atpPendingFile_h
 
@@ -35,6 +36,7 @@ public:
 
 private:
   std::string FinalPath, What, Partial;
+  int Slot = -1; ///< where a signal handler finds the partial file to remove it
   bool Committed = false;
 };
 

@@ -1,6 +1,6 @@
 #include "atpSurfaceGenerator.h"
 
-#include "atpOutputPath.h"
+#include "atpPendingFile.h"
 
 #include <cerrno>
 #include <array>
@@ -22,16 +22,15 @@ constexpr double Pi = 3.14159265358979323846;
 class BufferedFile
 {
 public:
-  // Writes to a side file renamed over `path` only when complete, so a failed run never
-  // leaves a truncated mesh that looks like a real one.
+  // Written beside `path` and renamed into place only when complete (PendingFile), so a failed
+  // or interrupted run never leaves a truncated mesh that looks like a real one.
   explicit BufferedFile(const std::string& path)
-    : Path(Checked(path))
-    , PartialPath(path + ".partial")
-    , File(std::fopen(PartialPath.c_str(), "wb"))
+    : Pending(path, "mesh")
+    , File(std::fopen(Pending.PartialPath().c_str(), "wb"))
   {
     if (!File)
     {
-      throw std::runtime_error(path + ": cannot create: " + std::strerror(errno));
+      throw Pending.Failure(std::strerror(errno));
     }
     Buffer.reserve(Capacity);
   }
@@ -40,18 +39,7 @@ public:
     if (File)
     {
       std::fclose(File);
-      std::remove(PartialPath.c_str());
     }
-  }
-  /// `path`, unless it cannot take the new file (OutputPathProblem): found before the work.
-  static const std::string& Checked(const std::string& path)
-  {
-    const std::string problem = OutputPathProblem(path);
-    if (!problem.empty())
-    {
-      throw std::runtime_error(path + ": " + problem);
-    }
-    return path;
   }
   template <typename T>
   void Put(const T& value)
@@ -69,12 +57,11 @@ public:
     Flush();
     const int closed = std::fclose(File);
     File = nullptr;
-    if (closed != 0 || std::rename(PartialPath.c_str(), Path.c_str()) != 0)
+    if (closed != 0)
     {
-      const std::string reason = std::strerror(errno);
-      std::remove(PartialPath.c_str());
-      throw std::runtime_error(Path + ": cannot finish writing: " + reason);
+      throw Pending.Failure(std::strerror(errno));
     }
+    Pending.Commit();
   }
 
 private:
@@ -82,13 +69,13 @@ private:
   {
     if (!Buffer.empty() && std::fwrite(Buffer.data(), 1, Buffer.size(), File) != Buffer.size())
     {
-      throw std::runtime_error(Path + ": write failed: " + std::strerror(errno));
+      throw Pending.Failure(std::strerror(errno));
     }
     Buffer.clear();
   }
 
   static constexpr std::size_t Capacity = std::size_t(4) << 20;
-  std::string Path, PartialPath;
+  PendingFile Pending;
   std::FILE* File;
   std::vector<char> Buffer;
 };

@@ -134,7 +134,20 @@ rm -f "$work"/*.ply "$work"/*.vtp "$work"/*.stl "$work/l6.atp"
 # The generator writes a mesh the builder reads back, and never a partial file.
 expect 0 "wrote .*g.ply: [0-9]+ triangles" -- "$atp" generate -n 5000 --holes 2 -o "$work/g.ply"
 expect 0 "boundary edges" -- "$atp" build "$work/g.ply" -o "$work/g.atp" --quiet
-expect 1 "cannot create" -- "$atp" generate -n 5000 -o "$work/no/such/dir/g.ply"
+expect 1 "g.ply: cannot write the mesh: No such file" -- "$atp" generate -n 5000 -o "$work/no/such/dir/g.ply"
+# Interrupted (SIGTERM, SIGHUP; a background job of a script ignores SIGINT): the partial file
+# goes too.
+mkdir "$work/interrupted"
+for signal in TERM HUP; do
+  "$atp" generate -n 20000000 -o "$work/interrupted/g.ply" > /dev/null 2>&1 &
+  pid=$!
+  sleep 0.3
+  kill -"$signal" "$pid" 2> /dev/null
+  wait "$pid"
+  [ -z "$(ls "$work/interrupted")" ] || fail "SIG$signal left $(ls "$work/interrupted")"
+  rm -f "$work/interrupted"/*
+done
+rmdir "$work/interrupted"
 
 # Volumes: the isosurface of a raw file (any voxel type and byte order, with spacing and origin)
 # or a .vti, contoured in slabs; made here with perl (raw) and as text (an ASCII .vti).
