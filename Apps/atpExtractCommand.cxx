@@ -18,10 +18,13 @@
 #include "vtkXMLPolyDataWriter.h"
 #include "vtkXMLWriter.h"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <stdexcept>
+#include <sys/statvfs.h>
 #include <vector>
 
 namespace atp
@@ -168,6 +171,10 @@ int ExtractCommand(const std::vector<std::string>& arguments)
   const int written = xml ? xml->Write() : vtkWriter::SafeDownCast(writer)->Write();
   const vtkIdType triangles = extract->GetOutput()->GetNumberOfPolys();
   const unsigned long code = writer->GetErrorCode();
+  if (code == vtkErrorCode::OutOfDiskSpaceError)
+  {
+    throw pending.Failure(std::strerror(ENOSPC));
+  }
   if (code != vtkErrorCode::NoError)
   {
     throw pending.Failure(vtkErrorCode::GetStringFromErrorCode(code));
@@ -178,7 +185,11 @@ int ExtractCommand(const std::vector<std::string>& arguments)
   }
   if (triangles > 0 && TrianglesIn(out, partial) != static_cast<long long>(triangles))
   {
-    throw pending.Failure("the file read back is incomplete");
+    // VTK's PLY writer reports no error: a full disk shows as a short file.
+    struct statvfs disk{};
+    const bool full = ::statvfs(partial.c_str(), &disk) == 0 && disk.f_bavail == 0;
+    throw pending.Failure(std::string(full ? std::strerror(ENOSPC) + std::string(": ") : "") +
+      "the file read back is incomplete");
   }
   pending.Commit();
   std::printf("wrote %s: %lld triangles from %lld patches (%s)\n", out.c_str(),
