@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cfloat>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -315,6 +316,15 @@ void ModelFile::ValidateHeader()
     !(h.QuantizationStep > 0))
   {
     Throw("quantization origin or step is not finite and positive");
+  }
+  // Patches decode to floats: every point of the grid must be one.
+  for (int a = 0; a < 3; ++a)
+  {
+    const double last = h.QuantizationOrigin[a] + double(QuantizationGrid::MaxInteger) * h.QuantizationStep;
+    if (!(std::abs(h.QuantizationOrigin[a]) <= FLT_MAX) || !(std::abs(last) <= FLT_MAX))
+    {
+      Throw("the quantization grid reaches beyond the range of floats");
+    }
   }
   if (!std::isfinite(h.ErrorScale) || !(h.ErrorScale >= 0))
   {
