@@ -6,7 +6,8 @@ namespace atp
 {
 namespace
 {
-/// Triangles located together (interleaved descents), and centroids computed at a time.
+/// Triangles located together (interleaved descents), and centroids computed at a time, by
+/// Insert without centroids.
 constexpr std::size_t Group = 256;
 /// Triangles inserted between two releases of the forest's and the bucket table's pages: a
 /// stream touches few leaves and the top of the forest in that time, whatever the forest's
@@ -59,6 +60,8 @@ void Partitioner::Redistribute(TetraForest::NodeIndex splitNode)
 void Partitioner::Insert(const SoupTriangle* triangles, std::size_t count)
 {
   double centroids[Group][3];
+  TetraForest::NodeIndex leaves[Group];
+  std::vector<TetraForest::NodeIndex> splits;
   for (std::size_t first = 0; first < count; first += Group)
   {
     const std::size_t n = std::min(Group, count - first);
@@ -66,37 +69,36 @@ void Partitioner::Insert(const SoupTriangle* triangles, std::size_t count)
     {
       Centroid(triangles[first + i], centroids[i]);
     }
-    Insert(triangles + first, centroids, n);
+    // Located against the forest as it stands; a leaf split by an earlier triangle of the
+    // group is finished by the descent in the Insert below, so the result is the same as one
+    // at a time.
+    Tetrahedra.LeavesContaining(centroids, leaves, n, Hint);
+    Insert(triangles + first, centroids, leaves, n, splits);
+    splits.clear();
   }
 }
 
-void Partitioner::Insert(const SoupTriangle* triangles, const double (*centroids)[3], std::size_t count)
+void Partitioner::Insert(const SoupTriangle* triangles, const double (*centroids)[3],
+  const TetraForest::NodeIndex* located, std::size_t count, std::vector<TetraForest::NodeIndex>& splits)
 {
   const auto redistribute = [this](TetraForest::NodeIndex n) { Redistribute(n); };
-  TetraForest::NodeIndex leaves[Group];
-  for (std::size_t first = 0; first < count; first += Group)
+  for (std::size_t i = 0; i < count; ++i)
   {
-    const std::size_t n = std::min(Group, count - first);
-    // Located against the forest as it stands; a leaf split by an earlier triangle of the
-    // group is finished by Descend below, so the result is the same as one at a time.
-    Tetrahedra.LeavesContaining(centroids + first, leaves, n, Hint);
-    for (std::size_t i = 0; i < n; ++i)
+    if (i + PrefetchDistance < count)
     {
-      if (i + PrefetchDistance < n)
-      {
-        Buckets.Prefetch(std::uint32_t(leaves[i + PrefetchDistance]), triangles[first + i + PrefetchDistance]);
-      }
-      const double* centroid = centroids[first + i];
-      TetraForest::NodeIndex leaf = Tetrahedra.Descend(leaves[i], centroid);
-      Buckets.Append(std::uint32_t(leaf), triangles[first + i]);
-      ++Inserted;
-      // Only the leaf that just grew can exceed the capacity; its children may too (all
-      // triangles on one side), hence the loop.
-      while (Buckets.Count(std::uint32_t(leaf)) > Settings.LeafCapacity &&
-        Tetrahedra.SplitDiamond(leaf, redistribute))
-      {
-        leaf = Tetrahedra.Descend(leaf, centroid);
-      }
+      Buckets.Prefetch(std::uint32_t(located[i + PrefetchDistance]), triangles[i + PrefetchDistance]);
+    }
+    const double* centroid = centroids[i];
+    TetraForest::NodeIndex leaf = Tetrahedra.Descend(located[i], centroid);
+    Buckets.Append(std::uint32_t(leaf), triangles[i]);
+    ++Inserted;
+    // Only the leaf that just grew can exceed the capacity; its children may too (all
+    // triangles on one side), hence the loop.
+    while (Buckets.Count(std::uint32_t(leaf)) > Settings.LeafCapacity &&
+      Tetrahedra.SplitDiamond(leaf, redistribute))
+    {
+      splits.push_back(leaf);
+      leaf = Tetrahedra.Descend(leaf, centroid);
     }
   }
   if (Inserted >= NextRelease)

@@ -45,9 +45,13 @@ public:
   Partitioner(const Box& bounds, const PartitionOptions& options);
 
   void Insert(const SoupTriangle* triangles, std::size_t count);
-  /// Insert, with the triangles' centroids given (Centroid of each): a thread that reads the
-  /// input computes them while this one inserts the batch before.
-  void Insert(const SoupTriangle* triangles, const double (*centroids)[3], std::size_t count);
+  /// Insert, with each triangle's centroid (Centroid) and a node of the forest holding it given:
+  /// a thread that reads the input finds them while this one inserts the batch before. That
+  /// node may be a leaf of the forest as it stood some splits ago (a copy the reading thread
+  /// keeps, TetraForest::SplitDiamond replaying `splits`): the descent goes on from it. Every
+  /// SplitDiamond call that splits a leaf is appended to `splits`, in order.
+  void Insert(const SoupTriangle* triangles, const double (*centroids)[3],
+    const TetraForest::NodeIndex* located, std::size_t count, std::vector<TetraForest::NodeIndex>& splits);
 
   const TetraForest& Forest() const { return Tetrahedra; }
   const LatticeFrame& Frame() const { return Lattice; }

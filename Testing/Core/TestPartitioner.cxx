@@ -502,6 +502,26 @@ TEST(PartitionStream, OverlapsReadingAndGivesTheSameForest)
   direct.Insert(soup.data(), soup.size());
   ASSERT_EQ(streamed->Forest().Size(), direct.Forest().Size());
   EXPECT_EQ(streamed->Stats().Leaves, direct.Stats().Leaves);
+  // The reading thread locates against its own copy of the forest, which lags the inserting
+  // thread's by the splits of a batch or two: node for node and triangle for triangle, the
+  // same partition.
+  std::vector<SoupTriangle> a, b;
+  std::size_t splits = 0;
+  for (std::size_t i = 0; i < direct.Forest().Size(); ++i)
+  {
+    const auto n = TetraForest::NodeIndex(i);
+    ASSERT_EQ(streamed->Forest()[n].Id.Bits, direct.Forest()[n].Id.Bits) << "node " << i;
+    ASSERT_EQ(streamed->Forest()[n].FirstChild, direct.Forest()[n].FirstChild) << "node " << i;
+    splits += !direct.Forest()[n].IsLeaf();
+    a.clear();
+    b.clear();
+    streamed->ReadLeaf(n, a);
+    direct.ReadLeaf(n, b);
+    ASSERT_EQ(a.size(), b.size()) << "node " << i;
+    ASSERT_TRUE(a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(SoupTriangle)) == 0)
+      << "node " << i;
+  }
+  EXPECT_GT(splits, 500u) << "the copy should lag many splits";
 }
 
 TEST(PartitionStream, ReaderErrorsReachTheCaller)
