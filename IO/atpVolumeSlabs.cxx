@@ -15,6 +15,7 @@
 #include <vtkXMLReader.h>
 
 #include <algorithm>
+#include <new>
 #include <cctype>
 
 namespace atp
@@ -219,7 +220,19 @@ vtkSmartPointer<vtkImageData> VolumeSlabReader::ReadSlab(int firstSlice, int las
     extent[5] = mirror - firstSlice;
   }
   this->Errors->FirstError.clear();
-  const int ok = this->Source->UpdateExtent(extent);
+  int ok = 0;
+  try
+  {
+    ok = this->Source->UpdateExtent(extent);
+  }
+  catch (const std::bad_alloc&)
+  {
+    // A header can declare any extent; VTK allocates what it says.
+    throw InputError(this->SourceName + ": cannot read slices " + std::to_string(firstSlice) +
+      " to " + std::to_string(lastSlice) + ": not enough memory for slices of " +
+      std::to_string(std::int64_t(this->Whole[1]) - this->Whole[0] + 1) + "x" +
+      std::to_string(std::int64_t(this->Whole[3]) - this->Whole[2] + 1) + " voxels");
+  }
   vtkImageData* output = vtkImageData::SafeDownCast(this->Source->GetOutputDataObject(0));
   if (!ok || !this->Errors->FirstError.empty() || this->Source->GetErrorCode() != 0 || !output)
   {
