@@ -6,6 +6,7 @@
 #include "atpConstruction.h"
 #include "atpModelCommands.h"
 #include "atpMpiBuild.h"
+#include "atpPendingFile.h"
 #include "atpPartitioner.h"
 #include "atpProcessMemory.h"
 #include "atpProgressReport.h"
@@ -352,17 +353,25 @@ int main(int argc, char** argv)
   }
   // A file size limit (ulimit -f) must fail the write with an error we report, not kill us.
   std::signal(SIGXFSZ, SIG_IGN);
-  // Inputs are read through memory maps: when another program truncates a file meanwhile, the
-  // next read of a page past its new end raises SIGBUS. A message and exit code 1, not a crash
-  // (models are read through CopyFromMapping, whose own handler reports it as an error).
-  struct sigaction shrunk{};
-  shrunk.sa_handler = [](int) {
-    static const char message[] = "atp: error: a file shrank while being read (truncated or "
-                                  "rewritten by another program)\n";
-    [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, message, sizeof message - 1);
+  // Inputs and scratch files are read through memory maps: when another program truncates one
+  // meanwhile, or a sparse scratch file finds its disk full, the next access past what is there
+  // raises SIGBUS. A message and exit code 1, no partial output, not a crash (models are read
+  // through CopyFromMapping, whose own handler reports it as an error and passes others here).
+  struct sigaction mappedFault{};
+  mappedFault.sa_flags = SA_SIGINFO;
+  mappedFault.sa_sigaction = [](int, siginfo_t* info, void*) {
+    static const char mapped[] = "atp: error: a mapped file could not be read or written (another "
+                                 "program truncated it, or its disk is full)\n";
+    static const char other[] = "atp: error: bus error (a hardware memory error or a misaligned "
+                                "access)\n";
+    const bool isMapped = info && info->si_code == BUS_ADRERR;
+    atp::RemovePendingFiles();
+    [[maybe_unused]] const ssize_t written = isMapped
+      ? ::write(STDERR_FILENO, mapped, sizeof mapped - 1)
+      : ::write(STDERR_FILENO, other, sizeof other - 1);
     ::_exit(1);
   };
-  ::sigaction(SIGBUS, &shrunk, nullptr);
+  ::sigaction(SIGBUS, &mappedFault, nullptr);
   const std::string command = argv[1];
   // atp build --mpi: every rank runs this program; ranks other than 0 are workers.
   std::optional<atp::MpiSession> mpi;

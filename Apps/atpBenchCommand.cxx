@@ -134,15 +134,16 @@ void WriteCsv(std::ostream& out, const std::vector<double>& seconds,
   }
 }
 
-/// An output option's pending file, created now (an unwritable place is reported before the
-/// flythrough), or none when the option is not given.
-std::optional<PendingFile> Output(const CommandLine& cl, const std::string& option, const std::string& what)
+/// An output option's pending file, created now (an unwritable place, or one of the `inputs`,
+/// is reported before the flythrough), or none when the option is not given.
+std::optional<PendingFile> Output(const CommandLine& cl, const std::string& option,
+  const std::string& what, const std::vector<std::string>& inputs)
 {
   if (!cl.Has(option))
   {
     return std::nullopt;
   }
-  return std::make_optional<PendingFile>(cl.Get(option), what);
+  return std::make_optional<PendingFile>(cl.Get(option), what, inputs);
 }
 
 /// The still camera of the last frame is rendered again until its cut is complete, for the
@@ -377,9 +378,14 @@ int BenchCommand(const std::vector<std::string>& arguments)
   // Everything a user can get wrong is found before the flythrough.
   auto file = std::make_shared<const ModelFile>(ModelFile::Open(settings.ModelPath));
   const bool csvToStdout = cl.Get("csv") == "-";
-  std::optional<PendingFile> csv = csvToStdout ? std::nullopt : Output(cl, "csv", "CSV");
-  std::optional<PendingFile> plot = Output(cl, "plot", "plot");
-  std::optional<PendingFile> image = Output(cl, "image", "image");
+  std::vector<std::string> inputs{ settings.ModelPath };
+  if (fullReader)
+  {
+    inputs.push_back(fullPath);
+  }
+  std::optional<PendingFile> csv = csvToStdout ? std::nullopt : Output(cl, "csv", "CSV", inputs);
+  std::optional<PendingFile> plot = Output(cl, "plot", "plot", inputs);
+  std::optional<PendingFile> image = Output(cl, "image", "image", inputs);
   if (fullReader)
   {
     // VTK's mesh readers crash on some malformed files (a truncated PLY): the builder's own

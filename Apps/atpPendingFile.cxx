@@ -32,13 +32,7 @@ std::atomic<int> SlotStates[Slots];
 
 void RemovePartialsAndEnd(int signal)
 {
-  for (std::size_t i = 0; i < Slots; ++i)
-  {
-    if (SlotStates[i].load() == Ready)
-    {
-      ::unlink(SlotPath[i]);
-    }
-  }
+  RemovePendingFiles();
   ::signal(signal, SIG_DFL);
   ::raise(signal);
 }
@@ -90,21 +84,35 @@ PendingFile::PendingFile(std::string path, std::string what, const std::vector<s
     throw Failure(problem); // found now, not when renaming after the work
   }
   Partial = FinalPath + ".partial-" + std::to_string(::getpid()) + FileExtension(FinalPath);
+  // Registered before it exists and until it is gone: no moment when a signal would leave it.
+  Slot = Register(Partial);
   const int fd = ::open(Partial.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd < 0)
   {
-    throw Failure(std::strerror(errno));
+    const int error = errno;
+    Unregister(Slot);
+    throw Failure(std::strerror(error));
   }
   ::close(fd);
-  Slot = Register(Partial);
 }
 
 PendingFile::~PendingFile()
 {
-  Unregister(Slot);
   if (!Committed)
   {
     std::remove(Partial.c_str());
+  }
+  Unregister(Slot);
+}
+
+void RemovePendingFiles()
+{
+  for (std::size_t i = 0; i < Slots; ++i)
+  {
+    if (SlotStates[i].load() == Ready)
+    {
+      ::unlink(SlotPath[i]);
+    }
   }
 }
 

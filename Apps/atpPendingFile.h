@@ -11,6 +11,10 @@
 namespace atp
 {
 
+/// Removes the partial files of every PendingFile not yet committed. Async-signal-safe: for a
+/// handler that ends the process without unwinding.
+void RemovePendingFiles();
+
 class PendingFile
 {
 public:

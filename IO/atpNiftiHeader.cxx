@@ -3,7 +3,6 @@
 #include "vtk_zlib.h"
 
 #include <cstdint>
-#include <cstring>
 
 namespace atp
 {
@@ -23,9 +22,15 @@ struct ScalarType
 constexpr ScalarType ScalarTypes[] = { { 2, 8 }, { 4, 16 }, { 8, 32 }, { 16, 32 }, { 64, 64 },
   { 256, 8 }, { 512, 16 }, { 768, 32 }, { 1024, 64 }, { 1280, 64 } };
 
-std::uint32_t Swapped32(std::uint32_t v)
+/// The integer of `bytes` bytes at p, little or big-endian, whatever the host's order.
+std::uint32_t Read(const unsigned char* p, int bytes, bool bigEndian)
 {
-  return (v >> 24) | ((v >> 8) & 0xff00u) | ((v << 8) & 0xff0000u) | (v << 24);
+  std::uint32_t value = 0;
+  for (int i = 0; i < bytes; ++i)
+  {
+    value |= std::uint32_t(p[bigEndian ? bytes - 1 - i : i]) << (8 * i);
+  }
+  return value;
 }
 } // namespace
 
@@ -41,22 +46,21 @@ std::string NiftiHeaderProblem(const std::string& path)
   }
   if (got < int(sizeof header))
   {
-    return "a NIfTI header is 348 bytes or more; the file holds fewer";
+    return got < 0 ? "cannot read its NIfTI header (a corrupt .gz?)"
+                   : "a NIfTI header is 348 bytes or more; the file holds fewer";
   }
-  std::uint32_t size;
-  std::memcpy(&size, header, sizeof size);
-  const bool swapped = size != std::uint32_t(Nifti1Bytes) && size != std::uint32_t(Nifti2Bytes);
-  size = swapped ? Swapped32(size) : size;
-  if (size != std::uint32_t(Nifti1Bytes) && size != std::uint32_t(Nifti2Bytes))
+  const auto isHeaderSize = [](std::uint32_t size) {
+    return size == std::uint32_t(Nifti1Bytes) || size == std::uint32_t(Nifti2Bytes);
+  };
+  const bool bigEndian = !isHeaderSize(Read(header, 4, false));
+  const std::uint32_t size = Read(header, 4, bigEndian);
+  if (!isHeaderSize(size))
   {
     return "not a NIfTI header (it does not start with its size, 348 or 540)";
   }
   const std::size_t at = size == std::uint32_t(Nifti1Bytes) ? Nifti1DataType : Nifti2DataType;
-  const auto field = [&](std::size_t offset) {
-    const unsigned first = header[offset], second = header[offset + 1];
-    return std::int16_t(swapped ? (first << 8 | second) : (second << 8 | first));
-  };
-  const std::int16_t code = field(at), bits = field(at + 2);
+  const auto code = std::int16_t(Read(header + at, 2, bigEndian));
+  const auto bits = std::int16_t(Read(header + at + 2, 2, bigEndian));
   for (const ScalarType& type : ScalarTypes)
   {
     if (type.Code == code)

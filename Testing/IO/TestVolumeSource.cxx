@@ -683,6 +683,15 @@ TEST_F(VolumeSource, Errors)
   this->ExpectError(patched("unknown.nii", 12345, 32), "NIfTI datatype 12345 is not one scalar per voxel", 2.5);
   this->ExpectError(patched("rgb.nii", 128, 24), "NIfTI datatype 128 is not one scalar per voxel", 2.5);
   this->ExpectError(patched("bits.nii", 16, 8), "datatype 16 has 32 bits per voxel, the header says 8", 2.5);
+  // A big-endian header: its size, datatype and bits read the other way round.
+  {
+    std::ifstream in(this->Path("whole.nii"), std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const unsigned char big[] = { 0, 0, 1, 92 /* 348 */, 6, 0 /* 1536 */, 0, 128 /* 128 */ };
+    std::memcpy(&bytes[0], big, 4);
+    std::memcpy(&bytes[70], big + 4, 4);
+    this->ExpectError(this->Write("big.nii", bytes), "NIfTI datatype 1536 is not one scalar per voxel", 2.5);
+  }
 }
 
 } // namespace
