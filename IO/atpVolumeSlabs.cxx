@@ -220,6 +220,8 @@ vtkSmartPointer<vtkImageData> VolumeSlabReader::ReadSlab(int firstSlice, int las
     extent[5] = mirror - firstSlice;
   }
   this->Errors->FirstError.clear();
+  const std::string cannotRead = this->SourceName + ": cannot read slices " +
+    std::to_string(firstSlice) + " to " + std::to_string(lastSlice);
   int ok = 0;
   try
   {
@@ -228,16 +230,14 @@ vtkSmartPointer<vtkImageData> VolumeSlabReader::ReadSlab(int firstSlice, int las
   catch (const std::bad_alloc&)
   {
     // A header can declare any extent; VTK allocates what it says.
-    throw InputError(this->SourceName + ": cannot read slices " + std::to_string(firstSlice) +
-      " to " + std::to_string(lastSlice) + ": not enough memory for slices of " +
+    throw InputError(cannotRead + ": not enough memory for slices of " +
       std::to_string(std::int64_t(this->Whole[1]) - this->Whole[0] + 1) + "x" +
       std::to_string(std::int64_t(this->Whole[3]) - this->Whole[2] + 1) + " voxels");
   }
   vtkImageData* output = vtkImageData::SafeDownCast(this->Source->GetOutputDataObject(0));
   if (!ok || !this->Errors->FirstError.empty() || this->Source->GetErrorCode() != 0 || !output)
   {
-    throw InputError(this->SourceName + ": cannot read slices " + std::to_string(firstSlice) +
-      " to " + std::to_string(lastSlice) +
+    throw InputError(cannotRead +
       (this->Errors->FirstError.empty() ? std::string() : ": " + this->Errors->FirstError));
   }
   const int* got = output->GetExtent();

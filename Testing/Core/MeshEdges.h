@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <set>
 #include <utility>
 #include <vector>
 
@@ -51,6 +52,18 @@ inline std::vector<Edge> OpenEdges(const atp::PatchMesh& mesh)
     }
   }
   return open;
+}
+
+/// The vertices the edges join, as positions.
+inline std::set<Position> EdgeEnds(const std::vector<Edge>& edges)
+{
+  std::set<Position> ends;
+  for (const Edge& e : edges)
+  {
+    ends.insert(e.first);
+    ends.insert(e.second);
+  }
+  return ends;
 }
 
 } // namespace test

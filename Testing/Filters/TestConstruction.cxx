@@ -196,12 +196,7 @@ TEST_F(Construction, EveryCutIsCrackFree)
   const atp::PatchMesh finest = atp::ExtractCut(model, atp::SelectLevel(model, 64));
   EXPECT_EQ(finest.TriangleCount(), model.Header().InputTriangles);
   EXPECT_EQ(OpenEdges(finest).size(), inputBoundary);
-  std::set<Position> boundaryVertices;
-  for (const Edge& e : OpenEdges(finest))
-  {
-    boundaryVertices.insert(e.first);
-    boundaryVertices.insert(e.second);
-  }
+  const std::set<Position> boundaryVertices = atp::test::EdgeEnds(OpenEdges(finest));
   // Open edges may only be the input's boundary, possibly simplified along itself: both ends
   // on the input's boundary vertices.
   const auto cracks = [&](const std::vector<Edge>& open) {
@@ -375,12 +370,8 @@ TEST_F(Construction, LockedBordersAreBitExactAcrossLevels)
   // end exactly where their children's do, on the same edges between the same bit-identical
   // positions.
   const atp::ModelFile model = atp::ModelFile::Open(Path);
-  std::set<Position> inputBoundary;
-  for (const Edge& e : OpenEdges(atp::ExtractCut(model, atp::SelectLevel(model, 64))))
-  {
-    inputBoundary.insert(e.first);
-    inputBoundary.insert(e.second);
-  }
+  const std::set<Position> inputBoundary =
+    atp::test::EdgeEnds(OpenEdges(atp::ExtractCut(model, atp::SelectLevel(model, 64))));
   ASSERT_FALSE(inputBoundary.empty());
   std::map<std::uint64_t, std::vector<std::uint32_t>> diamonds;
   for (std::uint32_t i = 0; i < model.NodeCount(); ++i)

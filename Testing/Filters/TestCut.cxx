@@ -147,12 +147,7 @@ TEST(Cut, WhileLoadingTheCutStaysCrackFreeAndConvergesToTheFullCut)
   auto index = std::make_shared<const atp::CutIndex>(model);
   atp::CutSelector selector(model, index);
   const atp::PatchMesh finest = atp::ExtractCut(model, atp::SelectLevel(model, 64));
-  std::set<Position> boundary;
-  for (const Edge& e : OpenEdges(finest))
-  {
-    boundary.insert(e.first);
-    boundary.insert(e.second);
-  }
+  const std::set<Position> boundary = EdgeEnds(OpenEdges(finest));
   std::mt19937 random(5);
   for (int v = 0; v < 24; ++v)
   {
