@@ -20,17 +20,11 @@ double DistanceTo(const atp::Sphere& s, const Point& p)
   return atp::test::Distance(Point{ { s.Center[0], s.Center[1], s.Center[2] } }, p);
 }
 
-double AngleBetween(const double a[3], const double b[3])
-{
-  const double la = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-  const double lb = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
-  const double c = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / (la * lb);
-  return std::acos(std::max(-1.0, std::min(1.0, c)));
-}
+using atp::test::AngleBetween;
 
 double HalfAngle(const atp::NormalCone& cone)
 {
-  return std::acos(std::max(-1.0, std::min(1.0, cone.Cos)));
+  return atp::test::AngleOfCosine(cone.Cos);
 }
 
 /// An n x n grid of bumps of the given height, as a patch.

@@ -592,11 +592,10 @@ TEST_F(Construction, SpheresAreSmallestAndConesHoldTheNormalsBelow)
   const atp::ModelFile model = atp::ModelFile::Open(Path);
   const atp::QuantizationGrid grid = model.PatchGrid();
   const auto angle = [](const double* a, const float* b) {
-    const double lb = std::sqrt(double(b[0]) * b[0] + double(b[1]) * b[1] + double(b[2]) * b[2]);
-    const double la = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-    return std::acos(std::max(-1.0, std::min(1.0, (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / (la * lb))));
+    const double axis[3] = { b[0], b[1], b[2] };
+    return atp::test::AngleBetween(a, axis);
   };
-  const auto halfAngle = [](float cosine) { return std::acos(std::max(-1.0, std::min(1.0, double(cosine)))); };
+  const auto halfAngle = [](float cosine) { return atp::test::AngleOfCosine(cosine); };
   atp::PatchMesh patch;
   std::size_t narrowCones = 0;
   for (std::uint32_t i = 0; i < model.NodeCount(); ++i)
