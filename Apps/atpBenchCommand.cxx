@@ -171,6 +171,7 @@ struct AtpRun
   bool Converged = false;    ///< whether it was, within MaxConvergingFrames
   vtkSmartPointer<vtkImageData> FinalFrame;
   double StartMiB = 0, FinalMiB = 0, PeakMiB = 0;
+  std::string Renderer; ///< the OpenGL renderer that drew it
 };
 
 /// The same path with vtkPolyDataMapper on the full-resolution mesh.
@@ -231,6 +232,7 @@ AtpRun FlyAtp(const Settings& settings, const std::shared_ptr<const ModelFile>& 
     throw std::runtime_error(errors.Message); // a corrupt patch: it names the file and node
   }
   run.FinalFrame = CaptureWindow(window);
+  run.Renderer = RendererName(window);
   run.FinalMiB = ResidentMiB();
   run.PeakMiB = std::max(PeakResidentMiB(), run.FinalMiB); // two counters, sampled apart
   return run;
@@ -281,6 +283,7 @@ void PrintAtpSummary(FILE* out, const Settings& settings, const AtpRun& run)
     "model: %s, %.1f MiB, %d frames at %dx%d, tolerance %g px, cache %lld MiB, prefetch %s\n",
     settings.ModelPath.c_str(), modelMiB, settings.Frames, settings.Width, settings.Height,
     settings.Tolerance, settings.CacheMiB, settings.Prefetching ? "on" : "off");
+  std::fprintf(out, "renderer: %s\n", run.Renderer.c_str());
   std::fprintf(out,
     "atp: frame time median %.2f ms, p95 %.2f ms; %.2fM triangles/s; triangles/frame median "
     "%.0f, max %.0f; patches/frame median %.0f, max %.0f\n",
@@ -326,7 +329,8 @@ int BenchCommand(const std::vector<std::string>& arguments)
     "Flies the standard path around a model offscreen (a full orbit, zooming from the whole\n"
     "model to a close-up and back, like the paper's inspection session) with vtkATPMapper,\n"
     "timing every frame to completion, and prints per-frame statistics as CSV and a summary.\n"
-    "Needs a display (xvfb-run -a without one). With --compare-full, the same path is drawn\n"
+    "Draws through X, or without a display on an EGL device (a headless GPU; else run under\n"
+    "xvfb-run -a); the summary names the renderer. With --compare-full, the same path is drawn\n"
     "by vtkPolyDataMapper on the full-resolution mesh, and the summary ends with a line\n"
     "holding speedup=<full median frame time / atp median frame time> and the image\n"
     "difference of the two at the final frame. Output files appear only when all are complete.");

@@ -98,11 +98,9 @@ class Snapshot
 {
 public:
   Snapshot(int width, int height)
+    : Window(NewOffscreenWindow(width, height))
   {
-    ConnectDisplay(Window);
-    Window->SetOffScreenRendering(1);
     Window->SetMultiSamples(0); // one sample per pixel, as the tolerance is stated
-    Window->SetSize(width, height);
     Window->AddRenderer(Renderer);
     Renderer->SetBackground(0, 0, 0);
     Actor->SetMapper(Mapper);
@@ -131,7 +129,7 @@ public:
   }
 
 private:
-  vtkNew<vtkRenderWindow> Window;
+  vtkSmartPointer<vtkRenderWindow> Window;
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkPolyDataMapper> Mapper;
   vtkNew<vtkActor> Actor;
@@ -249,8 +247,8 @@ int CalibrateCommand(const std::vector<std::string>& arguments)
     "Finds the model's error scale as the paper does (section 5.2): the smallest scale at which\n"
     "view-dependent cuts at the given tolerance show no visible difference from the full\n"
     "resolution (the model's leaves) in random views, searched by bisection in log space\n"
-    "between 0.001 and 1000. The pictures are rendered offscreen (run under xvfb-run -a without\n"
-    "a display) and compared as VTK's regression tests compare them (vtkImageDifference),\n"
+    "between 0.001 and 1000. The pictures are rendered offscreen (through X, or without a\n"
+    "display on an EGL device such as a headless GPU; else run under xvfb-run -a) and compared as VTK's regression tests compare them (vtkImageDifference),\n"
     "with a stricter intensity threshold. See docs/calibration.md.\n"
     "The scale found is stored in MODEL's header; nothing else in the file changes.");
   cl.AddPositional("MODEL", "a .atp model");

@@ -17,6 +17,7 @@ packages=(
   xvfb xauth             # headless rendering for tests
   clang libclang-rt-14-dev   # libFuzzer for scripts/fuzz.sh
   libx11-dev             # XOpenDisplay: no X display is a clear error, not VTK's abort
+  libegl-dev libglew-dev # without a display, atp draws on an EGL device (a headless GPU)
   mricron-data           # real MRI volumes for the brain isosurface benchmark
 )
 

@@ -3,7 +3,7 @@
 # passes its own check, and a tiny scale fails it: the picture comparison can fail.
 #   TestCalibrate.sh ATP_BINARY DATA_DIR
 set -u
-# Offscreen OpenGL still needs an X display here: provide one when there is none.
+# Offscreen pictures here go through X (EGL without a display is tested by TestBench.sh).
 if [ -z "${DISPLAY:-}" ] && command -v xvfb-run > /dev/null; then
   exec xvfb-run -a bash "$0" "$@"
 fi
