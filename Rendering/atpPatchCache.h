@@ -56,28 +56,38 @@ public:
     return &found->second->Item;
   }
 
-  /// Makes room for `bytes` by evicting the least recently used values not pinned by this
-  /// frame. False (and nothing evicted) when even that cannot make the room.
-  bool MakeRoom(std::size_t bytes)
+  /// Makes room for a value of `bytes` by evicting the least recently used values not pinned
+  /// by this frame, until the budget has room and `place` (which finds the value its storage,
+  /// such as a free range of a buffer, and may fail while that is fragmented) succeeds. False
+  /// when even evicting all of them cannot; nothing is evicted when the pinned values alone
+  /// leave no room in the budget.
+  bool MakeRoom(std::size_t bytes, const std::function<bool()>& place)
   {
     if (PinnedBytes + bytes > Budget)
     {
       return false;
     }
     // Pinned entries were moved to the front when used: the back holds the evictable ones.
-    for (auto it = Order.end(); Bytes + bytes > Budget && it != Order.begin();)
+    for (auto it = Order.end();;)
     {
-      --it;
-      if (it->LastFrame != Frame)
+      if (Bytes + bytes <= Budget && place())
       {
-        Release(it->Item);
-        Bytes -= it->Bytes;
-        Entries.erase(it->Key);
-        it = Order.erase(it);
-        ++Evictions;
+        return true;
       }
+      do
+      {
+        if (it == Order.begin())
+        {
+          return false;
+        }
+        --it;
+      } while (it->LastFrame == Frame);
+      Release(it->Item);
+      Bytes -= it->Bytes;
+      Entries.erase(it->Key);
+      it = Order.erase(it);
+      ++Evictions;
     }
-    return true;
   }
 
   /// Stores a value of `bytes` (pinned for this frame); the caller made room first.

@@ -22,6 +22,12 @@ constexpr std::size_t RenderPatchPositionOffset = 0;
 constexpr std::size_t RenderPatchNormalOffset = 12;
 constexpr std::size_t RenderPatchColorOffset = 20;
 
+/// Bytes per vertex: 20, or 24 with colors.
+constexpr std::size_t RenderPatchStride(bool hasColors)
+{
+  return hasColors ? 24 : 20;
+}
+
 struct RenderPatch
 {
   std::uint32_t Node = 0;
@@ -33,7 +39,7 @@ struct RenderPatch
   bool HasColors = false;
   std::string Error; ///< non-empty: the patch is corrupt and holds nothing
 
-  std::size_t Stride() const { return HasColors ? 24 : 20; }
+  std::size_t Stride() const { return RenderPatchStride(HasColors); }
   std::size_t Bytes() const { return Vertices.size() + Indices.size(); }
 };
 

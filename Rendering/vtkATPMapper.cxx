@@ -1,11 +1,13 @@
 #include "vtkATPMapper.h"
 
+#include "atpBufferArena.h"
 #include "atpCameraView.h"
 #include "atpCut.h"
 #include "atpPatchCache.h"
 #include "atpPatchFetcher.h"
 #include "atpPatchShaders.h"
 #include "atpPrefetcher.h"
+#include "atpRenderPatch.h"
 #include "atpRenderStatistics.h"
 #include "atpTetra.h"
 #include "vtkATPModel.h"
@@ -31,7 +33,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <thread>
 
@@ -50,32 +54,38 @@ double SecondsSince(Clock::time_point start)
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-/// One patch on the GPU: interleaved vertices, indices, and the attribute layout for the
-/// program it was last drawn with.
+/// One patch in its window's arena: its vertices, then its indices, in one range.
 struct GpuPatch
 {
   std::uint32_t Node = 0;
-  vtkSmartPointer<vtkOpenGLBufferObject> Vertices;
-  vtkSmartPointer<vtkOpenGLBufferObject> Indices;
-  vtkSmartPointer<vtkOpenGLVertexArrayObject> Layout;
-  vtkShaderProgram* LayoutProgram = nullptr;
+  std::size_t Offset = 0;      ///< of its range in the arena, in bytes
+  std::size_t Bytes = 0;       ///< what it asked of the arena
+  GLint BaseVertex = 0;        ///< its first vertex, as a vertex index into the arena
+  std::size_t IndexOffset = 0; ///< of its first index, in bytes
   GLsizei IndexCount = 0;
   GLenum IndexType = GL_UNSIGNED_SHORT;
-  std::size_t Stride = 0;
-  bool HasColors = false;
   std::uint32_t Triangles = 0;
   std::uint64_t UploadFrame = 0; ///< the frame that uploaded it
-
-  void Release()
-  {
-    Layout->ReleaseGraphicsResources();
-    Vertices->ReleaseGraphicsResources();
-    Indices->ReleaseGraphicsResources();
-  }
 };
 
-/// What one render window holds: GPU resources live in its context. OnGpu mirrors the cache's
-/// keys as a flat array, so the cut's residency test costs one load.
+/// A new buffer object of `bytes` bytes, its contents undefined.
+vtkSmartPointer<vtkOpenGLBufferObject> NewArenaBuffer(std::size_t bytes)
+{
+  auto buffer = vtkSmartPointer<vtkOpenGLBufferObject>::New();
+  buffer->GenerateBuffer(vtkOpenGLBufferObject::ArrayBuffer);
+  buffer->Bind();
+  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(bytes), nullptr, GL_STATIC_DRAW);
+  return buffer;
+}
+
+/// Where an arena starts: its buffer grows by doubling from here up to the cache budget, so a
+/// small model holds little GPU memory.
+constexpr std::size_t FirstArenaBytes = std::size_t(1) << 20;
+
+/// What one render window holds: GPU resources live in its context. All of its patches share
+/// one buffer (the arena) and one vertex layout, so a frame binds once and draws every patch
+/// of an index type in one call. OnGpu mirrors the cache's keys as a flat array, so the cut's
+/// residency test costs one load.
 struct WindowCache
 {
   std::vector<std::uint8_t> OnGpu;
@@ -86,11 +96,115 @@ struct WindowCache
   /// (asking would only decode them again and again for nothing).
   std::vector<std::uint8_t> NoRoom;
   atp::ViewPoint LastView;
+  std::size_t Stride = atp::RenderPatchStride(false);
+  atp::BufferArena Arena{ Stride };
+  vtkSmartPointer<vtkOpenGLBufferObject> Buffer; ///< the arena on the GPU; null while empty
+  vtkNew<vtkOpenGLVertexArrayObject> Layout;
+  vtkShaderProgram* LayoutProgram = nullptr; ///< the program and buffer Layout was made for
   atp::PatchCache<GpuPatch> Patches{ [this](GpuPatch& p) {
-    p.Release();
+    Arena.Free(p.Offset, p.Bytes);
     OnGpu[p.Node] = 0;
   } };
   std::uint64_t ModelGeneration = 0;
+  /// A frame's draws of each index type (16 and 32 bits): counts, index offsets, first vertices.
+  struct DrawList
+  {
+    std::vector<GLsizei> Counts;
+    std::vector<const void*> Indices;
+    std::vector<GLint> BaseVertices;
+  } Draws[2];
+
+  /// Empties the cache and the arena for patches of `stride` bytes per vertex.
+  void Reset(std::size_t stride)
+  {
+    ReleaseGraphicsResources();
+    Stride = stride;
+    Arena = atp::BufferArena(stride);
+  }
+
+  void ReleaseGraphicsResources()
+  {
+    Patches.Clear();
+    if (Buffer)
+    {
+      Buffer->ReleaseGraphicsResources();
+      Buffer = nullptr;
+    }
+    Layout->ReleaseGraphicsResources();
+    LayoutProgram = nullptr;
+    Arena.Reset(0);
+  }
+
+  /// A free range of `bytes` in the arena, growing its buffer (up to `limit` bytes) when none
+  /// is left; none when it is as large as it may grow and still has no such range.
+  std::optional<std::size_t> Place(std::size_t bytes, std::size_t limit)
+  {
+    if (std::optional<std::size_t> offset = Arena.Allocate(bytes))
+    {
+      return offset;
+    }
+    const std::size_t old = Arena.GetCapacity();
+    const std::size_t wanted = std::max({ 2 * old, old + Arena.Rounded(bytes), FirstArenaBytes });
+    const std::size_t capacity = std::min(wanted, limit) / Stride * Stride;
+    if (capacity <= old)
+    {
+      return std::nullopt;
+    }
+    vtkSmartPointer<vtkOpenGLBufferObject> grown = NewArenaBuffer(capacity);
+    if (Buffer)
+    {
+      glBindBuffer(GL_COPY_READ_BUFFER, GLuint(Buffer->GetHandle()));
+      glBindBuffer(GL_COPY_WRITE_BUFFER, GLuint(grown->GetHandle()));
+      glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, GLsizeiptr(old));
+      Buffer->ReleaseGraphicsResources();
+    }
+    Buffer = grown;
+    LayoutProgram = nullptr; // the layout points into the old buffer
+    Arena.Grow(capacity);
+    return Arena.Allocate(bytes);
+  }
+
+  /// Copies a decoded patch into the arena at `offset`.
+  GpuPatch Upload(const atp::RenderPatch& patch, std::size_t offset)
+  {
+    GpuPatch gpu;
+    gpu.Node = patch.Node;
+    gpu.Offset = offset;
+    gpu.Bytes = patch.Bytes();
+    gpu.BaseVertex = GLint(offset / Stride);
+    gpu.IndexOffset = offset + patch.Vertices.size(); // a whole number of 4-byte strides
+    gpu.IndexCount = GLsizei(3 * patch.TriangleCount);
+    gpu.IndexType = patch.ShortIndices ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
+    gpu.Triangles = patch.TriangleCount;
+    Buffer->Bind();
+    glBufferSubData(GL_ARRAY_BUFFER, GLintptr(offset), GLsizeiptr(patch.Vertices.size()),
+      patch.Vertices.data());
+    glBufferSubData(GL_ARRAY_BUFFER, GLintptr(gpu.IndexOffset), GLsizeiptr(patch.Indices.size()),
+      patch.Indices.data());
+    return gpu;
+  }
+
+  /// Binds the vertex layout of the arena for `program`.
+  void BindLayout(vtkShaderProgram* program, bool colors)
+  {
+    if (LayoutProgram != program)
+    {
+      Layout->ShaderProgramChanged(); // unbinds it
+      Layout->Bind();
+      Layout->AddAttributeArray(program, Buffer, "vertexMC", int(atp::RenderPatchPositionOffset),
+        Stride, VTK_FLOAT, 3, false);
+      Layout->AddAttributeArray(program, Buffer, "normalMC", int(atp::RenderPatchNormalOffset),
+        Stride, VTK_SHORT, 4, true);
+      if (colors)
+      {
+        Layout->AddAttributeArray(program, Buffer, "colorMC", int(atp::RenderPatchColorOffset),
+          Stride, VTK_UNSIGNED_CHAR, 4, true);
+      }
+      LayoutProgram = program;
+    }
+    Layout->Bind();
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, GLuint(Buffer->GetHandle())); // part of the layout
+  }
 };
 } // namespace
 
@@ -192,52 +306,11 @@ void vtkATPMapper::ReleaseGraphicsResources(vtkWindow* window)
   const auto found = this->Impl->Windows.find(window);
   if (found != this->Impl->Windows.end())
   {
-    found->second->Patches.Clear();
+    found->second->ReleaseGraphicsResources();
     this->Impl->Windows.erase(found);
   }
   this->Modified();
 }
-
-namespace
-{
-/// Uploads a decoded patch into new buffer objects.
-GpuPatch Upload(const atp::RenderPatch& patch)
-{
-  GpuPatch gpu;
-  gpu.Node = patch.Node;
-  gpu.Vertices = vtkSmartPointer<vtkOpenGLBufferObject>::New();
-  gpu.Indices = vtkSmartPointer<vtkOpenGLBufferObject>::New();
-  gpu.Layout = vtkSmartPointer<vtkOpenGLVertexArrayObject>::New();
-  gpu.Vertices->Upload(patch.Vertices, vtkOpenGLBufferObject::ArrayBuffer);
-  gpu.Indices->Upload(patch.Indices, vtkOpenGLBufferObject::ElementArrayBuffer);
-  gpu.IndexCount = GLsizei(3 * patch.TriangleCount);
-  gpu.IndexType = patch.ShortIndices ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
-  gpu.Stride = patch.Stride();
-  gpu.HasColors = patch.HasColors;
-  gpu.Triangles = patch.TriangleCount;
-  return gpu;
-}
-
-void BindLayout(GpuPatch& gpu, vtkShaderProgram* program, bool colors)
-{
-  if (gpu.LayoutProgram == program)
-  {
-    return;
-  }
-  gpu.Layout->ShaderProgramChanged();
-  gpu.Layout->Bind();
-  gpu.Layout->AddAttributeArray(program, gpu.Vertices, "vertexMC",
-    int(atp::RenderPatchPositionOffset), gpu.Stride, VTK_FLOAT, 3, false);
-  gpu.Layout->AddAttributeArray(program, gpu.Vertices, "normalMC",
-    int(atp::RenderPatchNormalOffset), gpu.Stride, VTK_SHORT, 4, true);
-  if (colors)
-  {
-    gpu.Layout->AddAttributeArray(program, gpu.Vertices, "colorMC",
-      int(atp::RenderPatchColorOffset), gpu.Stride, VTK_UNSIGNED_CHAR, 4, true);
-  }
-  gpu.LayoutProgram = program;
-}
-} // namespace
 
 void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
 {
@@ -297,9 +370,11 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     slot.reset(new WindowCache);
   }
   WindowCache& cache = *slot;
-  if (cache.ModelGeneration != in.ModelGeneration)
+  const bool colors = (model->Header().Flags & atp::ModelFlagColors) != 0;
+  if (cache.ModelGeneration != in.ModelGeneration ||
+    std::size_t(this->CacheBudget) < cache.Patches.GetBudget())
   {
-    cache.Patches.Clear();
+    cache.Reset(atp::RenderPatchStride(colors)); // a smaller budget gives GPU memory back
     cache.OnGpu.assign(model->NodeCount(), 0);
     cache.WantedFrame.assign(model->NodeCount(), 0);
     cache.NoRoom.assign(model->NodeCount(), 0);
@@ -328,12 +403,26 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     {
       return;
     }
-    if (!cache.Patches.MakeRoom(patch.Bytes()) && !mustFit)
+    std::optional<std::size_t> offset;
+    const std::size_t bytes = cache.Arena.Rounded(patch.Bytes());
+    const auto place = [&] {
+      offset = cache.Place(bytes, cache.Patches.GetBudget());
+      return offset.has_value();
+    };
+    if (!cache.Patches.MakeRoom(bytes, place))
     {
-      cache.NoRoom[patch.Node] = 1; // the region stays coarser
-      return;
+      if (!mustFit)
+      {
+        cache.NoRoom[patch.Node] = 1; // the region stays coarser
+        return;
+      }
+      offset = cache.Place(bytes, std::numeric_limits<std::size_t>::max()); // over the budget
+      if (!offset)
+      {
+        return;
+      }
     }
-    cache.Patches.Insert(patch.Node, Upload(patch), patch.Bytes()).UploadFrame = stats.Frame;
+    cache.Patches.Insert(patch.Node, cache.Upload(patch, *offset), bytes).UploadFrame = stats.Frame;
     cache.OnGpu[patch.Node] = 1;
     ++stats.Uploads;
     stats.UploadBytes += patch.Bytes();
@@ -400,7 +489,6 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
 
   // Draw.
   const Clock::time_point drawStart = Clock::now();
-  const bool colors = (model->Header().Flags & atp::ModelFlagColors) != 0;
   auto* openGLRenderer = vtkOpenGLRenderer::SafeDownCast(renderer);
   vtkProperty* property = actor->GetProperty();
   const int complexity = property->GetLighting() ? openGLRenderer->GetLightingComplexity() : 0;
@@ -462,32 +550,57 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   stats.Patches = 0;
   stats.Triangles = 0;
   stats.CacheHits = 0;
-  vtkOpenGLVertexArrayObject* bound = nullptr;
+  for (WindowCache::DrawList& list : cache.Draws)
+  {
+    list.Counts.clear();
+    list.Indices.clear();
+    list.BaseVertices.clear();
+  }
+  if (cache.Buffer)
+  {
+    cache.BindLayout(program, colors);
+  }
   for (const std::uint32_t node : in.Cut.Drawn)
   {
-    GpuPatch* gpu = cache.Patches.Use(node);
+    const GpuPatch* gpu = cache.Patches.Use(node);
     if (!gpu)
     {
       continue; // cannot happen: the cut draws resident patches only
     }
-    BindLayout(*gpu, program, colors);
-    gpu->Layout->Bind();
-    gpu->Indices->Bind();
-    bound = gpu->Layout;
+    const auto indices = reinterpret_cast<const void*>(gpu->IndexOffset);
     if (this->PatchColoring)
     {
       float rgb[3];
       atp::PatchColor(node, rgb);
       program->SetUniform3f("patchColor", rgb);
+      glDrawElementsBaseVertex(GL_TRIANGLES, gpu->IndexCount, gpu->IndexType,
+        const_cast<void*>(indices), gpu->BaseVertex);
     }
-    glDrawElements(GL_TRIANGLES, gpu->IndexCount, gpu->IndexType, nullptr);
+    else
+    {
+      WindowCache::DrawList& list = cache.Draws[gpu->IndexType == GL_UNSIGNED_INT];
+      list.Counts.push_back(gpu->IndexCount);
+      list.Indices.push_back(indices);
+      list.BaseVertices.push_back(gpu->BaseVertex);
+    }
     ++stats.Patches;
     stats.Triangles += gpu->Triangles;
     stats.CacheHits += gpu->UploadFrame != stats.Frame;
   }
-  if (bound)
+  const GLenum indexTypes[2] = { GL_UNSIGNED_SHORT, GL_UNSIGNED_INT };
+  for (int type = 0; type < 2; ++type)
   {
-    bound->Release();
+    WindowCache::DrawList& list = cache.Draws[type];
+    if (!list.Counts.empty())
+    {
+      glMultiDrawElementsBaseVertex(GL_TRIANGLES, list.Counts.data(), indexTypes[type],
+        const_cast<void**>(list.Indices.data()), GLsizei(list.Counts.size()),
+        list.BaseVertices.data());
+    }
+  }
+  if (cache.Buffer)
+  {
+    cache.Layout->Release();
   }
   if (representation != VTK_SURFACE)
   {

@@ -2,6 +2,7 @@
 // speculative prefetching. Run under ThreadSanitizer too (ATP_SANITIZE=thread).
 #include "TestModel.h"
 
+#include "atpBufferArena.h"
 #include "atpCut.h"
 #include "atpModelFile.h"
 #include "atpPatchCache.h"
@@ -30,18 +31,19 @@ TEST(PatchCache, EvictsLeastRecentlyUsedButNeverThisFramesPatches)
 {
   std::vector<int> released;
   atp::PatchCache<int> cache([&](int& v) { released.push_back(v); });
+  const auto fits = [] { return true; }; // storage that never fragments: the budget decides
   cache.SetBudget(300);
   for (std::uint32_t key = 0; key < 3; ++key)
   {
-    ASSERT_TRUE(cache.MakeRoom(100));
+    ASSERT_TRUE(cache.MakeRoom(100, fits));
     cache.Insert(key, int(key), 100);
   }
   // Full, and everything is pinned by this frame: no room.
-  EXPECT_FALSE(cache.MakeRoom(100));
+  EXPECT_FALSE(cache.MakeRoom(100, fits));
   EXPECT_TRUE(released.empty());
   cache.NewFrame();
   cache.Use(0); // 1 is now the least recently used
-  ASSERT_TRUE(cache.MakeRoom(100));
+  ASSERT_TRUE(cache.MakeRoom(100, fits));
   cache.Insert(3, 3, 100);
   EXPECT_EQ(released, std::vector<int>{ 1 });
   EXPECT_FALSE(cache.Contains(1));
@@ -50,11 +52,81 @@ TEST(PatchCache, EvictsLeastRecentlyUsedButNeverThisFramesPatches)
   EXPECT_EQ(cache.GetEvictions(), 1u);
   // A value larger than the budget never fits, and evicts nothing trying.
   cache.NewFrame();
-  EXPECT_FALSE(cache.MakeRoom(400));
+  EXPECT_FALSE(cache.MakeRoom(400, fits));
   EXPECT_EQ(cache.GetCount(), 3u);
   cache.Clear();
   EXPECT_EQ(released.size(), 4u);
   EXPECT_EQ(cache.GetBytes(), 0u);
+}
+
+TEST(PatchCache, EvictsUntilFragmentedStorageHasARange)
+{
+  // Values are ranges of an arena of 4 slots of 100 bytes: after 1 and 3 leave, 200 bytes are
+  // free but not in one piece, so a value of 200 evicts on until two neighbours are free.
+  atp::BufferArena arena(100);
+  arena.Reset(400);
+  atp::PatchCache<std::size_t> cache([&](std::size_t& offset) { arena.Free(offset, 100); });
+  cache.SetBudget(400);
+  for (std::uint32_t key = 0; key < 4; ++key)
+  {
+    std::optional<std::size_t> offset;
+    ASSERT_TRUE(cache.MakeRoom(100, [&] { return (offset = arena.Allocate(100)).has_value(); }));
+    cache.Insert(key, *offset, 100);
+  }
+  EXPECT_EQ(arena.GetUsedBytes(), 400u);
+  cache.NewFrame();
+  cache.Use(3);
+  cache.Use(0);
+  cache.Use(2); // least recently used first: 1, then 3, then 0, then 2 (pinned: 3, 0, 2)
+  cache.NewFrame();
+  cache.Use(0);
+  cache.Use(2); // pinned now: 0 and 2; 1 and 3 may go, and freeing both leaves two holes
+  std::optional<std::size_t> offset;
+  EXPECT_FALSE(cache.MakeRoom(200, [&] { return (offset = arena.Allocate(200)).has_value(); }));
+  EXPECT_EQ(cache.GetEvictions(), 2u);
+  EXPECT_EQ(arena.GetUsedBytes(), 200u);
+  cache.NewFrame(); // nothing pinned: 0 goes next (older than 2), joining two holes
+  ASSERT_TRUE(cache.MakeRoom(200, [&] { return (offset = arena.Allocate(200)).has_value(); }));
+  EXPECT_EQ(*offset, 0u);
+  EXPECT_EQ(cache.GetEvictions(), 3u);
+  EXPECT_TRUE(cache.Contains(2));
+}
+
+TEST(BufferArena, BestFitAlignedRangesThatJoinWhenFreed)
+{
+  atp::BufferArena arena(24);
+  EXPECT_FALSE(arena.Allocate(1).has_value()); // no buffer yet
+  arena.Reset(240);
+  EXPECT_EQ(arena.GetCapacity(), 240u);
+  const std::size_t a = *arena.Allocate(30); // rounded up to 48
+  const std::size_t b = *arena.Allocate(24);
+  const std::size_t c = *arena.Allocate(48);
+  EXPECT_EQ(a, 0u);
+  EXPECT_EQ(b, 48u);
+  EXPECT_EQ(c, 72u);
+  EXPECT_EQ(arena.GetUsedBytes(), 120u);
+  for (const std::size_t offset : { a, b, c })
+  {
+    EXPECT_EQ(offset % 24, 0u);
+  }
+  arena.Free(a, 30);
+  // Free: [0, 48) and [120, 240). A 48-byte range takes the hole that fits it exactly.
+  EXPECT_EQ(*arena.Allocate(40), 0u);
+  EXPECT_EQ(*arena.Allocate(24), 120u);
+  EXPECT_FALSE(arena.Allocate(120).has_value()); // 96 bytes are left in one range
+  // Freeing the middle joins it with both neighbours into one range.
+  arena.Free(b, 24);
+  arena.Free(c, 48);
+  arena.Free(0, 40);
+  arena.Free(120, 24);
+  EXPECT_EQ(arena.GetUsedBytes(), 0u);
+  EXPECT_EQ(*arena.Allocate(240), 0u);
+  arena.Free(0, 240);
+  // Growing frees the new end, joined with a free range that reached the old end.
+  arena.Allocate(24);
+  arena.Grow(480);
+  EXPECT_EQ(arena.GetCapacity(), 480u);
+  EXPECT_EQ(*arena.Allocate(456), 24u);
 }
 
 TEST(RenderPatch, LayoutMatchesTheDecodedPatch)
