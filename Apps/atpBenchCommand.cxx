@@ -171,6 +171,7 @@ struct AtpRun
   bool Converged = false;    ///< whether it was, within MaxConvergingFrames
   vtkSmartPointer<vtkImageData> FinalFrame;
   double StartMiB = 0, FinalMiB = 0, PeakMiB = 0;
+  ResidentKinds Final;  ///< FinalMiB by kind
   std::string Renderer; ///< the OpenGL renderer that drew it
 };
 
@@ -234,6 +235,7 @@ AtpRun FlyAtp(const Settings& settings, const std::shared_ptr<const ModelFile>& 
   run.FinalFrame = CaptureWindow(window);
   run.Renderer = RendererName(window);
   run.FinalMiB = ResidentMiB();
+  run.Final = ResidentByKind();
   run.PeakMiB = std::max(PeakResidentMiB(), run.FinalMiB); // two counters, sampled apart
   return run;
 }
@@ -305,9 +307,10 @@ void PrintAtpSummary(FILE* out, const Settings& settings, const AtpRun& run)
     static_cast<unsigned long long>(last.PrefetchAdvisedPages),
     run.Converged ? "complete" : "still incomplete", run.ConvergingFrames);
   std::fprintf(out,
-    "atp: resident memory %.1f MiB at start, %.1f MiB at the end (%.2f%% of the model file), "
-    "peak %.1f MiB\n",
-    run.StartMiB, run.FinalMiB, 100 * run.FinalMiB / modelMiB, run.PeakMiB);
+    "atp: resident memory %.1f MiB at start, %.1f MiB at the end (%.2f%% of the model file; "
+    "%.1f MiB anonymous, %.1f MiB mapped from files), peak %.1f MiB\n",
+    run.StartMiB, run.FinalMiB, 100 * run.FinalMiB / modelMiB, run.Final.AnonymousMiB,
+    run.Final.FileMiB, run.PeakMiB);
 }
 
 void PrintComparison(FILE* out, const std::string& path, const AtpRun& atp, const FullRun& full)

@@ -9,6 +9,13 @@ namespace atp
 double ResidentMiB();
 /// The largest resident memory so far, in MiB.
 double PeakResidentMiB();
+/// Resident memory now by kind, in MiB: anonymous (the heap, and what graphics drivers keep
+/// in main memory) and mapped from files (libraries, and pages of memory-mapped models).
+struct ResidentKinds
+{
+  double AnonymousMiB = 0, FileMiB = 0;
+};
+ResidentKinds ResidentByKind();
 
 }
 
