@@ -7,8 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
-#include <list>
-#include <unordered_map>
+#include <vector>
 
 namespace atp
 {
@@ -37,23 +36,26 @@ public:
     PinnedBytes = 0;
   }
 
-  bool Contains(std::uint32_t key) const { return Entries.count(key) != 0; }
+  bool Contains(std::uint32_t key) const { return SlotOf(key) != None; }
 
-  /// The value, marked used by (and pinned for) this frame; null when absent.
+  /// The value, marked used by (and pinned for) this frame; null when absent. Valid until the
+  /// next Insert.
   Value* Use(std::uint32_t key)
   {
-    const auto found = Entries.find(key);
-    if (found == Entries.end())
+    const std::uint32_t slot = SlotOf(key);
+    if (slot == None)
     {
       return nullptr;
     }
-    Order.splice(Order.begin(), Order, found->second);
-    if (found->second->LastFrame != Frame)
+    Entry& e = Entries[slot];
+    if (e.LastFrame != Frame)
     {
-      found->second->LastFrame = Frame;
-      PinnedBytes += found->second->Bytes;
+      e.LastFrame = Frame;
+      PinnedBytes += e.Bytes;
+      Unlink(slot);
+      LinkFront(slot);
     }
-    return &found->second->Item;
+    return &e.Item;
   }
 
   /// Makes room for a value of `bytes` by evicting the least recently used values not pinned
@@ -67,67 +69,121 @@ public:
     {
       return false;
     }
-    // Pinned entries were moved to the front when used: the back holds the evictable ones.
-    for (auto it = Order.end();;)
+    // Pinned entries were moved to the front when used: from the back, the first pinned entry
+    // ends the evictable ones.
+    for (;;)
     {
       if (Bytes + bytes <= Budget && place())
       {
         return true;
       }
-      do
+      if (Back == None || Entries[Back].LastFrame == Frame)
       {
-        if (it == Order.begin())
-        {
-          return false;
-        }
-        --it;
-      } while (it->LastFrame == Frame);
-      Release(it->Item);
-      Bytes -= it->Bytes;
-      Entries.erase(it->Key);
-      it = Order.erase(it);
+        return false;
+      }
+      Remove(Back);
       ++Evictions;
     }
   }
 
-  /// Stores a value of `bytes` (pinned for this frame); the caller made room first.
+  /// Stores a value of `bytes` (pinned for this frame) under a key not in the cache; the caller
+  /// made room first. Valid until the next Insert.
   Value& Insert(std::uint32_t key, Value value, std::size_t bytes)
   {
-    Order.push_front(Entry{ key, std::move(value), bytes, Frame });
-    Entries[key] = Order.begin();
+    std::uint32_t slot = None;
+    if (FreeSlots.empty())
+    {
+      slot = std::uint32_t(Entries.size());
+      Entries.emplace_back();
+    }
+    else
+    {
+      slot = FreeSlots.back();
+      FreeSlots.pop_back();
+    }
+    Entry& e = Entries[slot];
+    e.Key = key;
+    e.Item = std::move(value);
+    e.Bytes = bytes;
+    e.LastFrame = Frame;
+    LinkFront(slot);
+    if (key >= Slots.size())
+    {
+      Slots.resize(std::size_t(key) + 1, None);
+    }
+    Slots[key] = slot;
+    ++Count;
     Bytes += bytes;
     PinnedBytes += bytes;
-    return Order.front().Item;
+    return e.Item;
   }
 
   void Clear()
   {
-    for (Entry& e : Order)
+    while (Back != None)
     {
-      Release(e.Item);
+      Remove(Back);
     }
-    Order.clear();
     Entries.clear();
-    Bytes = 0;
+    FreeSlots.clear();
     PinnedBytes = 0;
   }
 
   std::size_t GetBytes() const { return Bytes; }
-  std::size_t GetCount() const { return Entries.size(); }
+  std::size_t GetCount() const { return Count; }
   std::uint64_t GetEvictions() const { return Evictions; }
 
 private:
+  static constexpr std::uint32_t None = ~std::uint32_t(0);
+
+  /// Entries live in one array, linked from the most recently used (Front) to the least (Back),
+  /// and keys, which are node indices, find theirs through a flat array: the cut pins tens of
+  /// thousands of patches a frame, and a hash map and list nodes made each a few cache misses.
   struct Entry
   {
-    std::uint32_t Key;
-    Value Item;
-    std::size_t Bytes;
-    std::uint64_t LastFrame;
+    std::uint32_t Key = 0;
+    std::uint32_t Previous = None, Next = None; ///< towards Front, towards Back
+    Value Item{};
+    std::size_t Bytes = 0;
+    std::uint64_t LastFrame = 0;
   };
 
+  std::uint32_t SlotOf(std::uint32_t key) const { return key < Slots.size() ? Slots[key] : None; }
+
+  void Unlink(std::uint32_t slot)
+  {
+    Entry& e = Entries[slot];
+    (e.Previous == None ? Front : Entries[e.Previous].Next) = e.Next;
+    (e.Next == None ? Back : Entries[e.Next].Previous) = e.Previous;
+  }
+
+  void LinkFront(std::uint32_t slot)
+  {
+    Entry& e = Entries[slot];
+    e.Previous = None;
+    e.Next = Front;
+    (Front == None ? Back : Entries[Front].Previous) = slot;
+    Front = slot;
+  }
+
+  /// Releases and unlinks an entry, freeing its slot.
+  void Remove(std::uint32_t slot)
+  {
+    Entry& e = Entries[slot];
+    Release(e.Item);
+    Unlink(slot);
+    Slots[e.Key] = None;
+    Bytes -= e.Bytes;
+    --Count;
+    FreeSlots.push_back(slot);
+  }
+
   ReleaseFunction Release;
-  std::list<Entry> Order; ///< most recently used first
-  std::unordered_map<std::uint32_t, typename std::list<Entry>::iterator> Entries;
+  std::vector<Entry> Entries;
+  std::vector<std::uint32_t> FreeSlots;
+  std::vector<std::uint32_t> Slots; ///< key -> entry, None when absent
+  std::uint32_t Front = None, Back = None;
+  std::size_t Count = 0;
   std::size_t Budget = std::size_t(512) << 20;
   std::size_t Bytes = 0;
   std::size_t PinnedBytes = 0; ///< of the entries used by this frame
