@@ -299,10 +299,12 @@ void PrintAtpSummary(FILE* out, const Settings& settings, const AtpRun& run)
     100 * Percentile(overhead, 0.95));
   const RenderStatistics& last = run.Last;
   std::fprintf(out,
-    "atp: decoded %llu patches in %.2f s of background time; cache %.1f MiB, %llu evictions; "
+    "atp: decoded %llu patches in %.2f s of background time; cache %.1f MiB in a %.1f MiB "
+    "buffer, %llu evictions; "
     "prefetch %llu passes, %llu pages advised; final frame %s after %d more frames\n",
     static_cast<unsigned long long>(last.DecodedPatches), last.DecodeSeconds,
-    double(last.CacheBytes) / 1048576.0, static_cast<unsigned long long>(last.Evictions),
+    double(last.CacheBytes) / 1048576.0, double(last.CacheBufferBytes) / 1048576.0,
+    static_cast<unsigned long long>(last.Evictions),
     static_cast<unsigned long long>(last.PrefetchPasses),
     static_cast<unsigned long long>(last.PrefetchAdvisedPages),
     run.Converged ? "complete" : "still incomplete", run.ConvergingFrames);

@@ -19,6 +19,7 @@ struct RenderStatistics
   std::uint64_t UploadBytes = 0;
   std::size_t CacheEntries = 0;
   std::uint64_t CacheBytes = 0;
+  std::uint64_t CacheBufferBytes = 0; ///< GPU memory the cache's buffer holds (CacheBytes and free)
   std::uint64_t Evictions = 0;      ///< since the cache was made
   std::size_t CutNodes = 0;         ///< nodes the cut visited
   double CutSeconds = 0;

@@ -611,6 +611,7 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   stats.CacheMisses = in.Cut.Missing.size();
   stats.CacheEntries = cache.Patches.GetCount();
   stats.CacheBytes = cache.Patches.GetBytes();
+  stats.CacheBufferBytes = cache.Arena.GetCapacity();
   stats.Evictions = cache.Patches.GetEvictions();
   stats.CutNodes = in.Cut.Visited;
   stats.DecodeSeconds = in.Fetcher->DecodeSeconds();
@@ -639,5 +640,6 @@ void vtkATPMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DecodeThreads: " << this->DecodeThreads << "\n";
   os << indent << "LastFrame: " << s.Patches << " patches, " << s.Triangles << " triangles, "
      << s.Uploads << " uploads, " << s.CacheMisses << " missing, cache " << s.CacheEntries
-     << " patches / " << s.CacheBytes << " bytes, converged " << s.Converged << "\n";
+     << " patches / " << s.CacheBytes << " bytes in a buffer of " << s.CacheBufferBytes
+     << " bytes, converged " << s.Converged << "\n";
 }

@@ -196,6 +196,25 @@ TEST(Mapper, ATinyCacheStillDrawsAConformingCutAndSettles)
   EXPECT_GT(scene.Mapper->GetStatistics().Evictions, 0u);
 }
 
+TEST(Mapper, TheCacheBufferGrowsWithTheCutAndShrinksWithTheBudget)
+{
+  AtpScene scene;
+  AimCamera(FirstRenderer(scene.Window), 30, 40, 1.0);
+  EXPECT_LT(RenderUntilConverged(scene.Window, scene.Mapper), 400);
+  const atp::RenderStatistics& grown = scene.Mapper->GetStatistics();
+  // The buffer starts at 1 MiB: it grew, copying what it held, and the picture still matches.
+  EXPECT_GT(grown.CacheBufferBytes, std::uint64_t(1) << 20);
+  EXPECT_GE(grown.CacheBufferBytes, grown.CacheBytes);
+  EXPECT_LE(ImageError(FullResolution(30, 40, 1.0), atp::CaptureWindow(scene.Window)), FidelityThreshold);
+  // A smaller budget gives the GPU memory back: the next frames fill a buffer within it.
+  scene.Mapper->SetCacheBudget(512 << 10);
+  EXPECT_LT(RenderUntilConverged(scene.Window, scene.Mapper, 400), 400);
+  const atp::RenderStatistics& shrunk = scene.Mapper->GetStatistics();
+  EXPECT_GT(shrunk.Patches, 0u);
+  EXPECT_LE(shrunk.CacheBufferBytes, std::uint64_t(512 << 10) + (1u << 20)) << "roots may exceed";
+  ExpectCrackFree(scene.Mapper->GetDrawnNodes());
+}
+
 TEST(Mapper, CachedPatchesCostNoUploads)
 {
   AtpScene scene;
