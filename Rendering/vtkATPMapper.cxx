@@ -68,13 +68,22 @@ struct GpuPatch
   std::uint64_t UploadFrame = 0; ///< the frame that uploaded it
 };
 
-/// A new buffer object of `bytes` bytes, its contents undefined.
+/// A new buffer object of `bytes` bytes, its contents undefined; null when the GPU has no room.
 vtkSmartPointer<vtkOpenGLBufferObject> NewArenaBuffer(std::size_t bytes)
 {
   auto buffer = vtkSmartPointer<vtkOpenGLBufferObject>::New();
   buffer->GenerateBuffer(vtkOpenGLBufferObject::ArrayBuffer);
   buffer->Bind();
+  for (int pending = 0; pending < 16 && glGetError() != GL_NO_ERROR; ++pending)
+  {
+    // errors of earlier calls, not this one's (bounded: a lost context repeats its error)
+  }
   glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(bytes), nullptr, GL_STATIC_DRAW);
+  if (glGetError() == GL_OUT_OF_MEMORY)
+  {
+    buffer->ReleaseGraphicsResources();
+    return nullptr;
+  }
   return buffer;
 }
 
@@ -151,6 +160,10 @@ struct WindowCache
       return std::nullopt;
     }
     vtkSmartPointer<vtkOpenGLBufferObject> grown = NewArenaBuffer(capacity);
+    if (!grown)
+    {
+      return std::nullopt; // the cache stays as large as it is, the picture coarser
+    }
     if (Buffer)
     {
       glBindBuffer(GL_COPY_READ_BUFFER, GLuint(Buffer->GetHandle()));
@@ -172,7 +185,7 @@ struct WindowCache
     gpu.Offset = offset;
     gpu.Bytes = patch.Bytes();
     gpu.BaseVertex = GLint(offset / Stride);
-    gpu.IndexOffset = offset + patch.Vertices.size(); // a whole number of 4-byte strides
+    gpu.IndexOffset = offset + patch.Vertices.size(); // strides are multiples of 4 bytes
     gpu.IndexCount = GLsizei(3 * patch.TriangleCount);
     gpu.IndexType = patch.ShortIndices ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
     gpu.Triangles = patch.TriangleCount;

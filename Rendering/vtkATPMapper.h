@@ -5,8 +5,10 @@
  * Draws a vtkATPModel with a plain vtkActor: every frame a stateless top-down cut of the
  * tetrahedron forest picks the patches whose saturated screen-space error is below
  * TolerancePixels, culling branches outside the view frustum (and, optionally, facing away),
- * and draws them from the mapper's own least-recently-used cache of GPU buffers (VTK OpenGL
- * buffer and vertex array objects, one VTK shader program) kept under CacheBudget bytes.
+ * and draws them from the mapper's own least-recently-used cache on the GPU, kept under
+ * CacheBudget bytes: per render window one VTK OpenGL buffer object holding every cached
+ * patch, one vertex array object and one VTK shader program, so that a frame draws all of its
+ * patches with one multi-draw call per index type.
  *
  * A frame never waits for the disk: patches the cut needs and the cache lacks are decoded on
  * background threads while the frame draws the coarser resident level for that region (a
