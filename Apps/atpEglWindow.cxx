@@ -57,7 +57,8 @@ struct EglContext
     {
       eglDestroySurface(this->Display, this->Surface);
     }
-    eglTerminate(this->Display);
+    // Not eglTerminate: a device has one EGLDisplay per process, shared by every window on it,
+    // and terminating it would take the other windows' contexts along.
   }
 
   /// Opens `device` and makes a width x height pbuffer with a core context on it.
