@@ -3,7 +3,7 @@
 # passes its own check, and a tiny scale fails it: the picture comparison can fail.
 #   TestCalibrate.sh ATP_BINARY DATA_DIR
 set -u
-# Offscreen pictures here go through X (EGL without a display is tested by TestBench.sh).
+# Offscreen pictures here go through X, and once through EGL without a display (below).
 if [ -z "${DISPLAY:-}" ] && command -v xvfb-run > /dev/null; then
   exec xvfb-run -a bash "$0" "$@"
 fi
@@ -33,6 +33,10 @@ cmp -s <(tail -c +417 "$work/x.atp") <(tail -c +417 "$work/original.atp") || { e
 expect 0 "scale $scale: no visible difference in 3 views" -- "$atp" calibrate "$work/x.atp" "${small[@]}" --check "$scale"
 expect 1 "scale 0.001: visible differences in [1-3] of 3 views" -- "$atp" calibrate "$work/x.atp" "${small[@]}" --check 0.001
 echo "$out"
+
+# Without a display the pictures come from an EGL device: the same verdicts.
+expect 0 "scale $scale: no visible difference in 3 views" -- env -u DISPLAY "$atp" calibrate "$work/x.atp" "${small[@]}" --check "$scale"
+expect 1 "scale 0.001: visible differences in [1-3] of 3 views" -- env -u DISPLAY "$atp" calibrate "$work/x.atp" "${small[@]}" --check 0.001
 
 echo "$passed passed, $failures failed"
 [ "$failures" -eq 0 ]
