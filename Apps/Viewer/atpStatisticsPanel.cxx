@@ -75,9 +75,9 @@ void StatisticsPanel::Show(const RenderStatistics& s, double frameSeconds)
   Label("cacheHits")->setText(Count(double(s.CacheHits)));
   Label("cacheMisses")->setText(Count(double(s.CacheMisses)));
   Label("uploads")->setText(QString("%1 (%2)").arg(Count(double(s.Uploads)), MiB(double(s.UploadBytes))));
-  Label("gpuCache")->setText(QString("%1 in %2 patches, %3 evictions")
+  Label("gpuCache")->setText(QString("%1 in %2 patches (%3 buffer), %4 evictions")
                                .arg(MiB(double(s.CacheBytes)), Count(double(s.CacheEntries)),
-                                 Count(double(s.Evictions))));
+                                 MiB(double(s.CacheBufferBytes)), Count(double(s.Evictions))));
   Label("memory")->setText(MiB(ResidentBytes()));
   Label("converged")->setText(s.Converged ? tr("yes") : tr("streaming patches..."));
 }

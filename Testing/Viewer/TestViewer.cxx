@@ -209,6 +209,8 @@ TEST(Viewer, OpensAModelAndShowsItsStatistics)
   EXPECT_NE(panel->Label("triangles")->text(), "0");
   EXPECT_TRUE(panel->Label("frameRate")->text().endsWith("ms)")) << panel->Label("frameRate")->text().toStdString();
   EXPECT_TRUE(panel->Label("memory")->text().endsWith("MiB"));
+  EXPECT_TRUE(panel->Label("gpuCache")->text().contains(" MiB buffer), "))
+    << panel->Label("gpuCache")->text().toStdString();
   EXPECT_EQ(panel->Label("converged")->text(), "yes");
   EXPECT_EQ(ErrorBox(viewer.Window.get()), nullptr);
 
