@@ -57,7 +57,6 @@ double SecondsSince(Clock::time_point start)
 /// One patch in its window's arena: its vertices, then its indices, in one range.
 struct GpuPatch
 {
-  std::uint32_t Node = 0;
   std::size_t Offset = 0;      ///< of its range in the arena, in bytes
   std::size_t Bytes = 0;       ///< what it asked of the arena
   GLint BaseVertex = 0;        ///< its first vertex, as a vertex index into the arena
@@ -93,11 +92,9 @@ constexpr std::size_t FirstArenaBytes = std::size_t(1) << 20;
 
 /// What one render window holds: GPU resources live in its context. All of its patches share
 /// one buffer (the arena) and one vertex layout, so a frame binds once and draws every patch
-/// of an index type in one call. OnGpu mirrors the cache's keys as a flat array, so the cut's
-/// residency test costs one load.
+/// of an index type in one call.
 struct WindowCache
 {
-  std::vector<std::uint8_t> OnGpu;
   /// The frame that last asked for each patch: an arrival no recent frame asked for is not
   /// worth an upload (the view moved on).
   std::vector<std::uint64_t> WantedFrame;
@@ -110,10 +107,8 @@ struct WindowCache
   vtkSmartPointer<vtkOpenGLBufferObject> Buffer; ///< the arena on the GPU; null while empty
   vtkNew<vtkOpenGLVertexArrayObject> Layout;
   vtkShaderProgram* LayoutProgram = nullptr; ///< the program and buffer Layout was made for
-  atp::PatchCache<GpuPatch> Patches{ [this](GpuPatch& p) {
-    Arena.Free(p.Offset, p.Bytes);
-    OnGpu[p.Node] = 0;
-  } };
+  /// Finds a node's patch through a flat array: the cut's residency test costs a load or two.
+  atp::PatchCache<GpuPatch> Patches{ [this](GpuPatch& p) { Arena.Free(p.Offset, p.Bytes); } };
   std::uint64_t ModelGeneration = 0;
   /// A frame's draws of each index type (16 and 32 bits): counts, index offsets, first vertices.
   struct DrawList
@@ -181,7 +176,6 @@ struct WindowCache
   GpuPatch Upload(const atp::RenderPatch& patch, std::size_t offset)
   {
     GpuPatch gpu;
-    gpu.Node = patch.Node;
     gpu.Offset = offset;
     gpu.Bytes = patch.Bytes();
     gpu.BaseVertex = GLint(offset / Stride);
@@ -388,7 +382,6 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     std::size_t(this->CacheBudget) < cache.Patches.GetBudget())
   {
     cache.Reset(atp::RenderPatchStride(colors)); // a smaller budget gives GPU memory back
-    cache.OnGpu.assign(model->NodeCount(), 0);
     cache.WantedFrame.assign(model->NodeCount(), 0);
     cache.NoRoom.assign(model->NodeCount(), 0);
     cache.ModelGeneration = in.ModelGeneration;
@@ -436,7 +429,6 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
       }
     }
     cache.Patches.Insert(patch.Node, cache.Upload(patch, *offset), bytes).UploadFrame = stats.Frame;
-    cache.OnGpu[patch.Node] = 1;
     ++stats.Uploads;
     stats.UploadBytes += patch.Bytes();
   };
@@ -465,7 +457,7 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     cache.LastView = view;
   }
   const atp::ResidentFunction resident = [&](std::uint32_t node) {
-    return cache.OnGpu[node] || model->Node(node).TriangleCount == 0;
+    return cache.Patches.Contains(node) || model->Node(node).TriangleCount == 0;
   };
   const Clock::time_point cutStart = Clock::now();
   in.Selector->Select(view, errorScale, resident, in.Cut);
