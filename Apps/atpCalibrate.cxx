@@ -248,8 +248,9 @@ int CalibrateCommand(const std::vector<std::string>& arguments)
     "view-dependent cuts at the given tolerance show no visible difference from the full\n"
     "resolution (the model's leaves) in random views, searched by bisection in log space\n"
     "between 0.001 and 1000. The pictures are rendered offscreen (through X, or without a\n"
-    "display on an EGL device such as a headless GPU; else run under xvfb-run -a) and compared as VTK's regression tests compare them (vtkImageDifference),\n"
-    "with a stricter intensity threshold. See docs/calibration.md.\n"
+    "display on an EGL device such as a headless GPU; else run under xvfb-run -a) and\n"
+    "compared as VTK's regression tests compare them (vtkImageDifference), with a stricter\n"
+    "intensity threshold. See docs/calibration.md.\n"
     "The scale found is stored in MODEL's header; nothing else in the file changes.");
   cl.AddPositional("MODEL", "a .atp model");
   cl.AddOption("views", "", "N", "random views to compare", "12");

@@ -16,19 +16,9 @@ namespace atp
 
 namespace
 {
-/// Gives `window`, when it draws through X11, the process's connection to the X display.
-void ConnectDisplay(vtkRenderWindow* window)
+/// Gives an X11 `window` the process's connection to the X display `name`.
+void ConnectDisplay(vtkRenderWindow* window, const char* name)
 {
-  if (!window->IsA("vtkXOpenGLRenderWindow"))
-  {
-    return; // EGL or OSMesa builds of VTK need no X server
-  }
-  const char* name = std::getenv("DISPLAY");
-  if (!name || !*name)
-  {
-    throw std::runtime_error(
-      "rendering offscreen needs an X display here; without one, run under xvfb-run -a");
-  }
   static Display* const display = XOpenDisplay(name); // closed by the exit
   if (!display)
   {
@@ -42,18 +32,22 @@ void ConnectDisplay(vtkRenderWindow* window)
 vtkSmartPointer<vtkRenderWindow> NewOffscreenWindow(int width, int height)
 {
   auto window = vtkSmartPointer<vtkRenderWindow>::New();
-  const char* display = std::getenv("DISPLAY");
-  if (window->IsA("vtkXOpenGLRenderWindow") && (!display || !*display))
+  // EGL or OSMesa builds of VTK need no X server; Debian's is built for X alone.
+  if (window->IsA("vtkXOpenGLRenderWindow"))
   {
-    std::string why;
-    if (vtkSmartPointer<vtkRenderWindow> headless = NewEglWindow(width, height, why))
+    const char* display = std::getenv("DISPLAY");
+    if (!display || !*display)
     {
-      return headless;
+      std::string why;
+      if (vtkSmartPointer<vtkRenderWindow> headless = NewEglWindow(width, height, why))
+      {
+        return headless;
+      }
+      throw std::runtime_error("rendering offscreen needs an X display or an EGL device here (" +
+        why + "); without either, run under xvfb-run -a");
     }
-    throw std::runtime_error("rendering offscreen needs an X display or an EGL device here (" +
-      why + "); without either, run under xvfb-run -a");
+    ConnectDisplay(window, display);
   }
-  ConnectDisplay(window);
   window->SetOffScreenRendering(1);
   window->SetSize(width, height);
   return window;
