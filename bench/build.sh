@@ -11,17 +11,8 @@
 # invisible to du).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-what=${1:-brain}
-given_scratch=
-[ $# -ge 2 ] && [ "$2" != -- ] && given_scratch=$2
-build_options=()
-for ((i = 1; i <= $#; ++i)); do
-  if [ "${!i}" = -- ]; then
-    build_options=("${@:i+1}")
-    break
-  fi
-done
 source bench/common.sh
+what_scratch_options "$@"
 scratch_dir "$given_scratch"
 input_path "$what" "$scratch"
 cleanup() {
@@ -41,7 +32,7 @@ base=$(used)
 ( while sleep 0.5; do used; done ) > "$scratch/df.log" &
 sampler=$!
 /usr/bin/time -f "time: %e s wall, %U s user, peak resident %M KiB" \
-  build/bin/atp build "$input" -o "$scratch/model.atp" --scratch "$scratch" --quiet "${build_options[@]}"
+  build/bin/atp build "$input" -o "$scratch/model.atp" --scratch "$scratch" --quiet "${options[@]}"
 kill "$sampler"
 peak=$(sort -n "$scratch/df.log" | tail -1)
 model_bytes=$(stat -c %s "$scratch/model.atp")

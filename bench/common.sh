@@ -3,6 +3,22 @@
 # isosurface of ch2better.nii.gz from mricron-data at 60, resampled 2x: 9.1M triangles), a
 # triangle count (a generated bumpy torus of at least that many) or a mesh file.
 
+# what_scratch_options ARGUMENT...: reads the scripts' arguments, WHAT [SCRATCH_DIR] [-- OPTION...],
+# into $what (default brain), $given_scratch (empty when none) and the array $options (what
+# follows "--", for the atp command the script runs).
+what_scratch_options() {
+  what=${1:-brain}
+  given_scratch=
+  [ $# -ge 2 ] && [ "$2" != -- ] && given_scratch=$2
+  options=()
+  for ((i = 1; i <= $#; ++i)); do
+    if [ "${!i}" = -- ]; then
+      options=("${@:i+1}")
+      break
+    fi
+  done
+}
+
 # scratch_dir GIVEN [PREFIX]: sets $scratch to GIVEN, made if missing and kept afterwards, or
 # without GIVEN to a new directory under /tmp (named PREFIX.XXXXXX, atp-bench by default), which
 # remove_scratch then removes.

@@ -11,17 +11,8 @@
 # headless GPU); the summary's renderer line says what drew.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-what=${1:-brain}
-given_scratch=
-[ $# -ge 2 ] && [ "$2" != -- ] && given_scratch=$2
-bench_options=()
-for ((i = 1; i <= $#; ++i)); do
-  if [ "${!i}" = -- ]; then
-    bench_options=("${@:i+1}")
-    break
-  fi
-done
 source bench/common.sh
+what_scratch_options "$@"
 scratch_dir "$given_scratch"
 input_path "$what" "$scratch"
 cleanup() {
@@ -44,4 +35,4 @@ else
   echo "full-resolution flythrough left out: $((input_bytes >> 20)) MiB of mesh, $((available >> 20)) MiB of memory available"
 fi
 build/bin/atp bench "$scratch/model.atp" "${compare[@]}" --quiet --csv "$scratch/frames.csv" \
-  --plot "$scratch/plot.png" --image "$scratch/final.png" "${bench_options[@]}"
+  --plot "$scratch/plot.png" --image "$scratch/final.png" "${options[@]}"
