@@ -244,7 +244,8 @@ int Build(int argc, char** argv, atp::MpiJobRunner* workers)
     FormatCount(double(c.TrianglesOverQuotas)).c_str(),
     static_cast<unsigned long long>(c.SimplifiedPatchesOverBudget), c.CoarsestError,
     builder->GetConstructionSeconds());
-  // Where the CPU went: the jobs' steps wherever they ran, the rest on the calling thread.
+  // Where the CPU went: the jobs' steps and loads wherever they ran, the rest on the calling
+  // thread.
   const atp::ConstructionCpuSeconds& cpu = c.Cpu;
   std::printf("cpu: partition %.2fs, construction %.2fs in this process; jobs: leaves %.2fs (weld "
               "%.2fs, encode %.2fs), diamonds %.2fs (merge %.2fs, simplify %.2fs, encode %.2fs); "

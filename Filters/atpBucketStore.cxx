@@ -227,7 +227,7 @@ std::size_t BucketStore::Resident(PageIndex page, bool load)
   if (load && Pages[page].OnDisk)
   {
     Disk.ReadAt(std::uint64_t(page) * PageBytes, FrameData(frame), PageBytes);
-    Counters.BytesRead += PageBytes;
+    BytesRead += PageBytes;
   }
   if (!load || !Pages[page].OnDisk)
   {
@@ -443,7 +443,7 @@ void BucketStore::Read(BucketIndex bucketIndex, std::vector<SoupTriangle>& out) 
     {
       buffer.resize(PageBytes);
       Disk.ReadAt(std::uint64_t(page) * PageBytes, buffer.data(), PageBytes);
-      Counters.BytesRead += PageBytes;
+      BytesRead += PageBytes;
       Unpack(buffer.data(), out);
     }
   }
@@ -514,35 +514,49 @@ void BucketStore::Empty(BucketIndex bucketIndex, bool releaseMemory)
     return;
   }
   Bucket& bucket = Buckets[bucketIndex];
-  for (PageIndex page = bucket.FirstPage, next; page != NoPage; page = next)
+  std::vector<std::size_t> freedFrames;
+  std::vector<PageIndex> freedOnDisk;
   {
-    next = Pages[page].Next;
-    if (Pages[page].Frame != NotResident)
+    // Only the lists of free frames and pages are shared with other buckets' Empty.
+    const std::lock_guard<std::mutex> lock(Recycling);
+    for (PageIndex page = bucket.FirstPage, next; page != NoPage; page = next)
     {
-      const std::size_t frame = std::size_t(Pages[page].Frame);
-      if (States[frame] == FrameState::Resident)
+      next = Pages[page].Next;
+      if (Pages[page].Frame != NotResident)
       {
-        States[frame] = FrameState::Free;
-        FramePage[frame] = -1;
-        FrameDirty[frame] = 0;
-        FrameReferenced[frame] = 0;
-        FreeFrames.push_back(frame);
-        if (releaseMemory)
+        const std::size_t frame = std::size_t(Pages[page].Frame);
+        if (States[frame] == FrameState::Resident)
         {
-          Pool.Release(frame * PageBytes, PageBytes);
+          States[frame] = FrameState::Free;
+          FramePage[frame] = -1;
+          FrameDirty[frame] = 0;
+          FrameReferenced[frame] = 0;
+          FreeFrames.push_back(frame);
+          if (releaseMemory)
+          {
+            freedFrames.push_back(frame);
+          }
         }
+        // A frame being written is freed when its batch finishes.
+        Pages[page].Frame = NotResident;
       }
-      // A frame being written is freed when its batch finishes.
-      Pages[page].Frame = NotResident;
+      if (Pages[page].OnDisk)
+      {
+        freedOnDisk.push_back(page);
+      }
+      Pages[page].OnDisk = 0;
+      Pages[page].Next = FreePages;
+      FreePages = page;
     }
-    if (Pages[page].OnDisk)
-    {
-      // Construction empties buckets for good: their disk space goes back at once.
-      Disk.Release(std::uint64_t(page) * PageBytes, PageBytes);
-    }
-    Pages[page].OnDisk = 0;
-    Pages[page].Next = FreePages;
-    FreePages = page;
+  }
+  for (std::size_t frame : freedFrames)
+  {
+    Pool.Release(frame * PageBytes, PageBytes);
+  }
+  for (PageIndex page : freedOnDisk)
+  {
+    // Construction empties buckets for good: their disk space goes back at once.
+    Disk.Release(std::uint64_t(page) * PageBytes, PageBytes);
   }
   bucket = Bucket(); // its next append starts a page, which forgets its last triangle
 }

@@ -19,9 +19,11 @@
 #include "atpTriangleSource.h"
 #include "vtkATPFiltersModule.h"
 
+#include <atomic>
 #include <cstdint>
 #include <future>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 namespace atp
@@ -60,7 +62,8 @@ public:
   /// of an append's time.
   /// Only a hint: it changes nothing, and does nothing for a page that is not in memory.
   void Prefetch(BucketIndex bucket, const SoupTriangle& triangle) const;
-  /// Appends the bucket's triangles to `out`, in insertion order.
+  /// Appends the bucket's triangles to `out`, in insertion order. Once appending has stopped,
+  /// safe from several threads at once, and beside Discard of other buckets.
   void Read(BucketIndex bucket, std::vector<SoupTriangle>& out) const;
   /// Empties the bucket and recycles its pages.
   void Clear(BucketIndex bucket) { Empty(bucket, false); }
@@ -70,6 +73,8 @@ public:
   /// Throws std::runtime_error when a pending write-back fails (disk full).
   void StopAppending();
   /// Empties the bucket for good: as Clear, and its frames' memory goes back to the system.
+  /// Once appending has stopped, safe from several threads at once, and beside Read of other
+  /// buckets.
   void Discard(BucketIndex bucket) { Empty(bucket, true); }
 
   /// Gives the memory of the records that grow with the input (one per node of the forest, one
@@ -80,7 +85,12 @@ public:
     Pages.ReleaseResident();
   }
 
-  const BucketStoreStats& Stats() const { return Counters; }
+  BucketStoreStats Stats() const
+  {
+    BucketStoreStats stats = Counters;
+    stats.BytesRead = BytesRead;
+    return stats;
+  }
   std::size_t PoolPages() const { return FramePage.size(); }
 
 private:
@@ -207,7 +217,11 @@ private:
   static constexpr std::size_t PrefaultFrames = 512;
   std::size_t PrefaultedFrames = 0;
   std::future<void> Prefaulting;
-  mutable BucketStoreStats Counters; // reads count too
+  BucketStoreStats Counters;
+  /// Held by Empty while it adds to the free frames and pages: construction discards buckets
+  /// on several threads at once.
+  std::mutex Recycling;
+  mutable std::atomic<std::uint64_t> BytesRead{ 0 }; // Read counts too, on any thread
 };
 
 } // namespace atp

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 #include <utility>
 
 namespace atp
@@ -273,7 +274,8 @@ private:
     NoteScratchPeak();
   }
 
-  /// Runner.Run, with the calling thread's CPU time in loading jobs and storing results counted.
+  /// Runner.Run, with the CPU time of loading jobs (on whichever threads) and storing results
+  /// counted.
   void RunJobs(std::size_t count, const PatchJobRunner::LoadJob& load,
     const PatchJobRunner::StoreResult& store)
   {
@@ -282,7 +284,10 @@ private:
       [&](std::size_t i, PatchJob& job) {
         ThreadCpuLap lap;
         load(i, job);
-        lap.Lap(Stats.Cpu.LoadJobs);
+        double seconds = 0;
+        lap.Lap(seconds);
+        const std::lock_guard<std::mutex> lock(LoadCpuMutex);
+        Stats.Cpu.LoadJobs += seconds;
       },
       [&](std::size_t i, PatchJobResult& made) {
         ThreadCpuLap lap;
@@ -296,6 +301,7 @@ private:
   {
     RunJobs(
       leaves.size(),
+      // Buckets are read and released by several threads at once.
       [&](std::size_t i, PatchJob& job) {
         Partition.ReadLeaf(leaves[i], job.Soup);
         Partition.ReleaseLeaf(leaves[i]);
@@ -375,7 +381,9 @@ private:
       });
   }
 
-  /// A diamond's job: its members' shapes and their children's full-precision patches.
+  /// A diamond's job: its members' shapes and their children's full-precision patches. Runs on
+  /// any thread: the children are the level below, finished, and the patch store reads from
+  /// several threads at once.
   void LoadDiamond(NodeRange members, PatchJob& job) const
   {
     for (NodeIndex m : members)
@@ -562,6 +570,8 @@ private:
   std::size_t NodesVisited = 0;
   std::size_t NextRelease = ReleaseInterval;
   ConstructionStats Stats;
+  /// Guards Stats.Cpu.LoadJobs, which jobs loaded on other threads add to.
+  std::mutex LoadCpuMutex;
 };
 
 } // namespace

@@ -33,7 +33,9 @@ struct ConstructionOptions
 };
 
 /// CPU seconds by step of construction. The jobs' steps are summed over every job, wherever it
-/// ran (threads of this process or MPI workers); the others run on the calling thread.
+/// ran (threads of this process or MPI workers). Loading jobs runs where the runner loads them
+/// (each thread of this process its own jobs; an MPI coordinator all); the others on the calling
+/// thread.
 struct ConstructionCpuSeconds
 {
   double LeafWeld = 0;        ///< buckets welded into indexed patches

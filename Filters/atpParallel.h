@@ -1,6 +1,6 @@
-// Runs independent jobs on worker threads between an ordered reader and an ordered writer.
-// Jobs are read and their results written in index order by the calling thread, so output never
-// depends on which thread ran what (builds are byte-identical whatever the thread count).
+// Runs independent jobs on worker threads ahead of an ordered writer. Results are written in
+// index order by the calling thread, so output never depends on which thread ran what (builds
+// are byte-identical whatever the thread count).
 #ifndef atpParallel_h
 #define atpParallel_h
 
@@ -16,20 +16,20 @@
 namespace atp
 {
 
-/// For i in [0, count): load(i), then work(i), then store(i). The caller runs every load and
-/// store, each in index order; work runs on up to `threads` threads (the caller's included,
-/// when it has nothing to load or store). At most `window` jobs are between their load and
-/// their store, which bounds memory; loads and stores overlap the work, with no barrier
-/// between batches. The first exception in index order stops everything and is rethrown once
-/// every thread has stopped (a load's or a store's at once, a work's when its store is due).
-template<typename Load, typename Work, typename Store>
-void OrderedPipeline(std::size_t count, int threads, std::size_t window, const Load& load,
-  const Work& work, const Store& store)
+/// For i in [0, count): work(i), then store(i). work runs on up to `threads` threads (the
+/// caller's included, when it has nothing to store), started in index order; the caller runs
+/// every store, in index order. At most `window` jobs are between their start and their store,
+/// which bounds memory; stores overlap the work, with no barrier between batches. The first
+/// exception in index order stops everything and is rethrown once every thread has stopped (a
+/// store's at once, a work's when its store is due).
+template<typename Work, typename Store>
+void OrderedPipeline(
+  std::size_t count, int threads, std::size_t window, const Work& work, const Store& store)
 {
   window = std::max<std::size_t>(1, window);
   std::mutex mutex;
   std::condition_variable changed;
-  std::deque<std::size_t> loaded;           // waiting for a thread
+  std::deque<std::size_t> waiting;          // started, waiting for a thread
   std::vector<char> finished(window, 0);     // per slot (index % window): work done
   std::vector<std::exception_ptr> errors(window);
   bool stopping = false;
@@ -54,13 +54,13 @@ void OrderedPipeline(std::size_t count, int threads, std::size_t window, const L
     std::unique_lock<std::mutex> lock(mutex);
     for (;;)
     {
-      changed.wait(lock, [&]() { return stopping || !loaded.empty(); });
+      changed.wait(lock, [&]() { return stopping || !waiting.empty(); });
       if (stopping)
       {
         return;
       }
-      const std::size_t i = loaded.front();
-      loaded.pop_front();
+      const std::size_t i = waiting.front();
+      waiting.pop_front();
       run(i, lock);
     }
   };
@@ -92,25 +92,24 @@ void OrderedPipeline(std::size_t count, int threads, std::size_t window, const L
     pool.emplace_back(helper);
   }
 
-  std::size_t next = 0; // the next job to load
+  std::size_t next = 0; // the next job to start
   for (std::size_t due = 0; due < count;)
   {
-    while (next < count && next - due < window)
-    {
-      load(next);
-      {
-        std::lock_guard<std::mutex> lock(mutex);
-        loaded.push_back(next++);
-      }
-      changed.notify_one();
-    }
     std::unique_lock<std::mutex> lock(mutex);
+    if (next < count && next - due < window)
+    {
+      while (next < count && next - due < window)
+      {
+        waiting.push_back(next++);
+      }
+      changed.notify_all();
+    }
     const std::size_t slot = due % window;
-    if (!finished[slot] && !loaded.empty())
+    if (!finished[slot] && !waiting.empty())
     {
       // Nothing to store yet: lend a hand, the oldest job first.
-      const std::size_t i = loaded.front();
-      loaded.pop_front();
+      const std::size_t i = waiting.front();
+      waiting.pop_front();
       run(i, lock);
       continue;
     }

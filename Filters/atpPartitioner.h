@@ -59,7 +59,8 @@ public:
   {
     return Buckets.Count(std::uint32_t(leaf));
   }
-  /// Appends the triangles of `leaf` to `out`.
+  /// Appends the triangles of `leaf` to `out`. Once inserting has stopped, safe from several
+  /// threads at once, and beside ReleaseLeaf of other leaves.
   void ReadLeaf(TetraForest::NodeIndex leaf, std::vector<SoupTriangle>& out) const
   {
     Buckets.Read(std::uint32_t(leaf), out);
@@ -79,7 +80,8 @@ public:
     Tetrahedra.ReleaseResident();
     Buckets.ReleaseResident();
   }
-  /// Empties the leaf's bucket once its triangles are read for the last time.
+  /// Empties the leaf's bucket once its triangles are read for the last time. Once inserting
+  /// has stopped, safe from several threads at once, and beside ReadLeaf of other leaves.
   void ReleaseLeaf(TetraForest::NodeIndex leaf) { Buckets.Discard(std::uint32_t(leaf)); }
   PartitionStats Stats() const;
   const PartitionOptions& Options() const { return Settings; }

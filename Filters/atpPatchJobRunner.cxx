@@ -22,18 +22,17 @@ public:
 
   void Run(std::size_t count, const LoadJob& load, const StoreResult& store) override
   {
-    // Enough jobs in flight to keep every thread busy while the caller reads and writes, few
-    // enough to bound memory.
+    // Enough jobs in flight to keep every thread busy while the caller writes, few enough to
+    // bound memory.
     const std::size_t window = std::size_t(Threads) * 4;
-    std::vector<PatchJob> jobs(window);
     std::vector<PatchJobResult> results(window);
     OrderedPipeline(
       count, Threads, window,
       [&](std::size_t i) {
-        jobs[i % window] = PatchJob();
-        load(i, jobs[i % window]);
+        PatchJob job;
+        load(i, job);
+        results[i % window] = MakePatches(*Context, std::move(job));
       },
-      [&](std::size_t i) { results[i % window] = MakePatches(*Context, std::move(jobs[i % window])); },
       [&](std::size_t i) {
         store(i, results[i % window]);
         results[i % window] = PatchJobResult();

@@ -1,8 +1,9 @@
 // Where construction's jobs run: on threads of this process (ThreadJobRunner) or on other
 // processes, e.g. MPI workers on other machines (Apps/atpMpiBuild.h). Construction hands a
-// runner one batch at a time (the leaves or the inner diamonds of one level); the runner loads
-// jobs and stores results through the caller, always in job order, so the caller's bookkeeping
-// and the model never depend on where or when a job ran.
+// runner one batch at a time (the leaves or the inner diamonds of one level); the runner stores
+// results through the caller, always in job order, so the caller's bookkeeping and the model
+// never depend on where or when a job ran. Jobs may be loaded on any thread: on many cores one
+// thread could not read the inputs of all the others.
 #ifndef atpPatchJobRunner_h
 #define atpPatchJobRunner_h
 
@@ -19,7 +20,8 @@ namespace atp
 class VTKATPFILTERS_EXPORT PatchJobRunner
 {
 public:
-  /// Fills job i (on the calling thread, i ascending).
+  /// Fills job i. On any thread, several at once, in any order: it may only read what no
+  /// StoreResult of the same Run changes.
   using LoadJob = std::function<void(std::size_t i, PatchJob& job)>;
   /// Takes the result of job i (on the calling thread, i ascending).
   using StoreResult = std::function<void(std::size_t i, PatchJobResult& result)>;
@@ -35,7 +37,7 @@ public:
 };
 
 /// Runs jobs on up to `threads` threads of this process (0: every core), a few per thread at a
-/// time.
+/// time, each loaded by the thread that makes it.
 VTKATPFILTERS_EXPORT std::unique_ptr<PatchJobRunner> MakeThreadJobRunner(int threads);
 
 } // namespace atp

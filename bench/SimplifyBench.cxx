@@ -41,6 +41,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <random>
 #include <string>
 #include <stdexcept>
@@ -517,22 +518,31 @@ public:
   {
     const std::size_t step = std::max<std::size_t>(1, count / PerLevel);
     bool diamonds = false;
+    std::mutex mutex; // jobs are loaded on several threads
+    std::map<std::size_t, PatchJob> kept; // by index: recorded in job order whatever the threads
     Threads->Run(
       count,
       [&](std::size_t i, PatchJob& job) {
         load(i, job);
-        diamonds = diamonds || !job.IsLeaf();
+        std::uint64_t triangles = 0;
         for (const PatchMesh& child : job.Children)
         {
-          LevelTriangles[DiamondLevels + 1] += double(child.TriangleCount());
+          triangles += child.TriangleCount();
         }
+        const std::lock_guard<std::mutex> lock(mutex);
+        diamonds = diamonds || !job.IsLeaf();
+        LevelTriangles[DiamondLevels + 1] += double(triangles);
         if (!job.IsLeaf() && i % step == 0 && i / step < PerLevel)
         {
-          Jobs.push_back(job);
-          Levels.push_back(DiamondLevels + 1);
+          kept.emplace(i, job);
         }
       },
       store);
+    for (auto& indexAndJob : kept)
+    {
+      Jobs.push_back(std::move(indexAndJob.second));
+      Levels.push_back(DiamondLevels + 1);
+    }
     DiamondLevels += diamonds;
   }
 

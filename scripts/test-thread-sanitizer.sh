@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The threaded parts (the input's two-thread passes and partitioning; construction's ordered
-# pipeline and a threaded build; rendering's
+# pipeline, a threaded build and jobs loaded on their threads; rendering's
 # background decoding, prefetching and the mapper that drives them) under ThreadSanitizer, in
 # build-tsan/. Fails on any report.
 set -euo pipefail
@@ -9,12 +9,13 @@ build_dir=build-tsan
 if [ ! -f "$build_dir/build.ninja" ]; then
   cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DATP_SANITIZE=thread
 fi
-cmake --build "$build_dir" -j "$(nproc)" --target TestParallel TestTriangleSources TestPartitioner TestConstruction TestRenderingCore TestMapper
+cmake --build "$build_dir" -j "$(nproc)" --target TestParallel TestTriangleSources TestPartitioner TestConstruction TestPatchJob TestRenderingCore TestMapper
 export TSAN_OPTIONS="halt_on_error=1 abort_on_error=1 suppressions=$PWD/Testing/tsan.supp"
 "$build_dir/tests/TestParallel"
 "$build_dir/tests/TestTriangleSources"
 "$build_dir/tests/TestPartitioner" --gtest_filter='*Stream*'
 "$build_dir/tests/TestConstruction" --gtest_filter='*ThreadCount*'
+"$build_dir/tests/TestPatchJob" --gtest_filter='*Loaded*'
 "$build_dir/tests/TestRenderingCore"
 bash scripts/headless.sh "$build_dir/tests/TestMapper"
 echo "ThreadSanitizer: no reports"

@@ -15,9 +15,12 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <unistd.h>
 
 namespace
@@ -88,6 +91,33 @@ int Build(const std::string& out, atp::PatchJobRunner* runner, atp::Construction
   return ok;
 }
 
+/// The threads of this process, counting the leaf and diamond jobs loaded off the calling thread.
+class LoadWatchingRunner : public atp::PatchJobRunner
+{
+public:
+  void Begin(const atp::PatchJobContext& context) override { Threads->Begin(context); }
+
+  void Run(std::size_t count, const LoadJob& load, const StoreResult& store) override
+  {
+    const std::thread::id caller = std::this_thread::get_id();
+    Threads->Run(
+      count,
+      [&](std::size_t i, atp::PatchJob& job) {
+        load(i, job);
+        const std::lock_guard<std::mutex> lock(Mutex);
+        (job.IsLeaf() ? Leaves : Diamonds) += 1;
+        (job.IsLeaf() ? LeavesElsewhere : DiamondsElsewhere) += std::this_thread::get_id() != caller;
+      },
+      store);
+  }
+
+  std::mutex Mutex;
+  std::size_t Leaves = 0, LeavesElsewhere = 0, Diamonds = 0, DiamondsElsewhere = 0;
+
+private:
+  std::unique_ptr<atp::PatchJobRunner> Threads = atp::MakeThreadJobRunner(3);
+};
+
 /// Every way of cutting `message` short, or making it longer, is refused.
 template<typename Decode>
 void ExpectOnlyTheWholeMessageDecodes(std::vector<std::uint8_t> message, const Decode& decode)
@@ -132,6 +162,25 @@ TEST(PatchJob, ModelIsIdenticalWhenEveryJobTravelsAsBytes)
   EXPECT_TRUE(ReadBytes(shipped) == reference);
   std::remove(threads.c_str());
   std::remove(shipped.c_str());
+}
+
+// The calling thread stores every result in order; the jobs' inputs (buckets, the children's
+// patches) are read by the threads that make them, and the model stays the same.
+TEST(PatchJob, JobsAreLoadedOnTheThreadsThatMakeThem)
+{
+  const std::string plain = TempPath("plain.atp"), watched = TempPath("watched.atp");
+  atp::ConstructionStats direct, stats;
+  ASSERT_EQ(Build(plain, nullptr, direct), 1);
+  LoadWatchingRunner runner;
+  ASSERT_EQ(Build(watched, &runner, stats), 1);
+  EXPECT_GT(runner.Leaves, 100u);
+  EXPECT_GT(runner.LeavesElsewhere, 0u);
+  EXPECT_GT(runner.Diamonds, 50u);
+  EXPECT_GT(runner.DiamondsElsewhere, 0u);
+  EXPECT_GT(stats.Cpu.LoadJobs, 0);
+  EXPECT_TRUE(ReadBytes(watched) == ReadBytes(plain));
+  std::remove(plain.c_str());
+  std::remove(watched.c_str());
 }
 
 TEST(PatchJob, MalformedMessagesAreRefused)
