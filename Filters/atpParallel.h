@@ -17,11 +17,11 @@ namespace atp
 {
 
 /// For i in [0, count): work(i), then store(i). work runs on up to `threads` threads (the
-/// caller's included, when it has nothing to store), started in index order; the caller runs
-/// every store, in index order. At most `window` jobs are between their start and their store,
-/// which bounds memory; stores overlap the work, with no barrier between batches. The first
-/// exception in index order stops everything and is rethrown once every thread has stopped (a
-/// store's at once, a work's when its store is due).
+/// caller's included, when it has nothing to store), which take the jobs in index order; the
+/// caller runs every store, in index order. At most `window` jobs are between their release to
+/// the threads and their store, which bounds memory; stores overlap the work, with no barrier
+/// between batches. The first exception in index order stops everything and is rethrown once
+/// every thread has stopped (a store's at once, a work's when its store is due).
 template<typename Work, typename Store>
 void OrderedPipeline(
   std::size_t count, int threads, std::size_t window, const Work& work, const Store& store)
@@ -29,7 +29,7 @@ void OrderedPipeline(
   window = std::max<std::size_t>(1, window);
   std::mutex mutex;
   std::condition_variable changed;
-  std::deque<std::size_t> waiting;          // started, waiting for a thread
+  std::deque<std::size_t> waiting;          // released, not yet taken by a thread
   std::vector<char> finished(window, 0);     // per slot (index % window): work done
   std::vector<std::exception_ptr> errors(window);
   bool stopping = false;
