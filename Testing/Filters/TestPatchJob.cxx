@@ -1,7 +1,8 @@
 // Construction's jobs on their own, as the MPI build ships them: a build whose every job and
 // result travels as bytes, made in reverse order, writes the same model as the threaded build;
-// malformed messages are refused, never read past.
+// malformed messages are refused, never read past. Threads read the jobs they make.
 #include "atpConstruction.h"
+#include "atpPartitioner.h"
 #include "atpPatchJob.h"
 #include "atpPatchJobMessages.h"
 #include "atpPatchJobRunner.h"
@@ -77,7 +78,9 @@ public:
   std::size_t LeafJobs = 0, DiamondJobs = 0;
 };
 
-int Build(const std::string& out, atp::PatchJobRunner* runner, atp::ConstructionStats& stats)
+/// `bucketMiB` 1 puts nearly every bucket page in the scratch file: leaves are read from disk.
+int Build(const std::string& out, atp::PatchJobRunner* runner, atp::ConstructionStats& stats,
+  int bucketMiB = 256, std::uint64_t* bucketBytesSpilled = nullptr)
 {
   vtkNew<vtkATPBuilder> builder;
   builder->SetInputFileName(ATP_DATA_DIR "/bumpy-torus.ply");
@@ -85,9 +88,14 @@ int Build(const std::string& out, atp::PatchJobRunner* runner, atp::Construction
   builder->SetLeafCapacity(1000); // a deeper hierarchy: many leaf and diamond jobs
   builder->SetPatchBudget(500);
   builder->SetNumberOfThreads(2);
+  builder->SetBucketMemoryMiB(bucketMiB);
   builder->SetJobRunner(runner);
   const int ok = builder->Build();
   stats = builder->GetConstructionStats();
+  if (bucketBytesSpilled)
+  {
+    *bucketBytesSpilled = builder->GetPartitionStats().Buckets.BytesWritten;
+  }
   return ok;
 }
 
@@ -165,22 +173,35 @@ TEST(PatchJob, ModelIsIdenticalWhenEveryJobTravelsAsBytes)
 }
 
 // The calling thread stores every result in order; the jobs' inputs (buckets, the children's
-// patches) are read by the threads that make them, and the model stays the same.
+// patches) are read by the threads that make them, and the model stays the same, with the
+// buckets in memory or read back from the scratch file.
 TEST(PatchJob, JobsAreLoadedOnTheThreadsThatMakeThem)
 {
-  const std::string plain = TempPath("plain.atp"), watched = TempPath("watched.atp");
+  const std::string plain = TempPath("plain.atp"), watched = TempPath("watched.atp"),
+                    spilled = TempPath("spilled.atp");
   atp::ConstructionStats direct, stats;
   ASSERT_EQ(Build(plain, nullptr, direct), 1);
-  LoadWatchingRunner runner;
-  ASSERT_EQ(Build(watched, &runner, stats), 1);
-  EXPECT_GT(runner.Leaves, 100u);
-  EXPECT_GT(runner.LeavesElsewhere, 0u);
-  EXPECT_GT(runner.Diamonds, 50u);
-  EXPECT_GT(runner.DiamondsElsewhere, 0u);
-  EXPECT_GT(stats.Cpu.LoadJobs, 0);
-  EXPECT_TRUE(ReadBytes(watched) == ReadBytes(plain));
+  const std::string reference = ReadBytes(plain);
+  for (const int bucketMiB : { 256, 1 })
+  {
+    LoadWatchingRunner runner;
+    std::uint64_t bucketBytesSpilled = 0;
+    const std::string& out = bucketMiB == 1 ? spilled : watched;
+    ASSERT_EQ(Build(out, &runner, stats, bucketMiB, &bucketBytesSpilled), 1);
+    EXPECT_GT(runner.Leaves, 100u);
+    EXPECT_GT(runner.LeavesElsewhere, 0u);
+    EXPECT_GT(runner.Diamonds, 50u);
+    EXPECT_GT(runner.DiamondsElsewhere, 0u);
+    EXPECT_GT(stats.Cpu.LoadJobs, 0);
+    EXPECT_TRUE(ReadBytes(out) == reference) << bucketMiB << " MiB of buckets";
+    if (bucketMiB == 1)
+    {
+      EXPECT_GT(bucketBytesSpilled, 1u << 20);
+    }
+  }
   std::remove(plain.c_str());
   std::remove(watched.c_str());
+  std::remove(spilled.c_str());
 }
 
 TEST(PatchJob, MalformedMessagesAreRefused)
