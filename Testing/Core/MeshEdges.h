@@ -36,6 +36,21 @@ inline std::map<std::pair<std::uint32_t, std::uint32_t>, int> EdgeUses(const atp
   return uses;
 }
 
+/// The vertices on open edges (used by one triangle) of an indexed mesh, by index.
+inline std::set<std::uint32_t> OpenEdgeVertices(const atp::PatchMesh& mesh)
+{
+  std::set<std::uint32_t> vertices;
+  for (const auto& [edge, count] : EdgeUses(mesh))
+  {
+    if (count == 1)
+    {
+      vertices.insert(edge.first);
+      vertices.insert(edge.second);
+    }
+  }
+  return vertices;
+}
+
 /// Open edges (used by one triangle) of a welded mesh, as position pairs.
 inline std::vector<Edge> OpenEdges(const atp::PatchMesh& mesh)
 {

@@ -43,7 +43,7 @@
 namespace
 {
 using atp::test::Edge;
-using atp::test::EdgeUses;
+using atp::test::OpenEdgeVertices;
 using atp::test::OpenEdges;
 using atp::test::Position;
 
@@ -318,15 +318,7 @@ TEST_F(Construction, VerticesAreInputVerticesBorderBitExact)
   {
     const atp::ModelNode& node = model.Node(i);
     atp::DecodePatch(model.PatchData(i), node.PatchBytes, grid, patch);
-    std::set<std::uint32_t> onBorder;
-    for (const auto& [edge, uses] : EdgeUses(patch))
-    {
-      if (uses == 1)
-      {
-        onBorder.insert(edge.first);
-        onBorder.insert(edge.second);
-      }
-    }
+    const std::set<std::uint32_t> onBorder = OpenEdgeVertices(patch);
     for (std::uint32_t v = 0; v < patch.VertexCount(); ++v)
     {
       const float* p = &patch.Positions[3 * v];
@@ -805,15 +797,7 @@ TEST_F(Construction, InputColorsReachEveryLevel)
     }
     levels.insert(atp::TetId{ node.Tet }.Level());
     ASSERT_EQ(patch.Colors.size(), 4 * patch.VertexCount()) << "node " << i;
-    std::set<std::uint32_t> onBorder;
-    for (const auto& [edge, uses] : EdgeUses(patch))
-    {
-      if (uses == 1)
-      {
-        onBorder.insert(edge.first);
-        onBorder.insert(edge.second);
-      }
-    }
+    const std::set<std::uint32_t> onBorder = OpenEdgeVertices(patch);
     for (std::uint32_t v = 0; v < patch.VertexCount(); ++v)
     {
       if (!onBorder.count(v) && node.Children[0] >= 0)
