@@ -484,6 +484,18 @@ void SumByteLanes(std::uint8_t* data, std::size_t count)
   }
 }
 
+/// The most triangles around one vertex (a triangle with a repeated corner counts twice there).
+std::uint32_t LargestValence(const std::vector<std::uint32_t>& indices, std::size_t vertexCount)
+{
+  std::vector<std::uint32_t> valence(vertexCount, 0);
+  std::uint32_t largest = 0;
+  for (const std::uint32_t v : indices)
+  {
+    largest = std::max(largest, ++valence[v]);
+  }
+  return largest;
+}
+
 /// Undoes SumByteLanes: each byte becomes the zigzag code of its difference from the byte
 /// Stride places before it. Eight bytes at a time from the end back, so every byte still reads
 /// an unchanged predecessor.
@@ -545,7 +557,7 @@ std::vector<std::uint8_t> EncodePatch(const PatchMesh& mesh, const QuantizationG
   // index codec already stores lists in ~1.2 bytes per triangle.
   const std::size_t vertexCount = mesh.VertexCount();
   std::vector<std::uint32_t> indices(indexCount);
-  if (order == CacheOrder::Fast)
+  if (order == CacheOrder::Fast || LargestValence(mesh.Indices, vertexCount) > MaxBestOrderValence)
   {
     meshopt_optimizeVertexCacheFifo(
       indices.data(), mesh.Indices.data(), indexCount, vertexCount, 16);

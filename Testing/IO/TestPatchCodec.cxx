@@ -450,6 +450,54 @@ TEST(PatchCodec, FastCacheOrderKeepsTheTrianglesInAnotherGoodOrder)
   EXPECT_LT(fastMisses, 0.6f * input);
 }
 
+/// `mesh` with a disk of `triangles` triangles around one new vertex beside it.
+atp::PatchMesh WithFan(atp::PatchMesh mesh, std::uint32_t triangles)
+{
+  const auto center = std::uint32_t(mesh.VertexCount());
+  const auto add = [&mesh](float x, float y) {
+    mesh.Positions.insert(mesh.Positions.end(), { x, y, 0.0f });
+    mesh.Normals.insert(mesh.Normals.end(), { 0.0f, 0.0f, 1.0f });
+  };
+  add(3, 0);
+  for (std::uint32_t i = 0; i < triangles; ++i)
+  {
+    const double angle = 2 * 3.141592653589793 * i / triangles;
+    add(3 + 0.5f * float(std::cos(angle)), 0.5f * float(std::sin(angle)));
+  }
+  for (std::uint32_t i = 0; i < triangles; ++i)
+  {
+    mesh.Indices.insert(mesh.Indices.end(), { center, center + 1 + i, center + 1 + (i + 1) % triangles });
+  }
+  return mesh;
+}
+
+// The best order's time per triangle grows with the valence of the vertices in its cache: a
+// triangle repeated thousands of times (which no partition splits) made it quadratic. Above
+// the limit a patch takes the fast order, at the limit it keeps the best.
+TEST(PatchCodec, VerticesOfGreatValenceTakeTheFastOrder)
+{
+  const atp::QuantizationGrid grid = GridFor(-2, 4);
+  const atp::PatchMesh terrain = Terrain(-1.5f, 0.25f, 1.0f, 12, false, 4);
+  const auto encode = [&grid](const atp::PatchMesh& mesh, atp::CacheOrder order) {
+    return atp::EncodePatch(mesh, grid, {}, nullptr, order);
+  };
+  const atp::PatchMesh atLimit = WithFan(terrain, atp::MaxBestOrderValence);
+  EXPECT_NE(encode(atLimit, atp::CacheOrder::Best), encode(atLimit, atp::CacheOrder::Fast));
+  const atp::PatchMesh overLimit = WithFan(terrain, atp::MaxBestOrderValence + 1);
+  EXPECT_EQ(encode(overLimit, atp::CacheOrder::Best), encode(overLimit, atp::CacheOrder::Fast));
+
+  atp::PatchMesh repeated = terrain;
+  for (int i = 0; i < 20000; ++i)
+  {
+    repeated.Indices.insert(repeated.Indices.end(), terrain.Indices.begin(), terrain.Indices.begin() + 3);
+  }
+  const std::vector<std::uint8_t> bytes = encode(repeated, atp::CacheOrder::Best);
+  EXPECT_EQ(bytes, encode(repeated, atp::CacheOrder::Fast));
+  atp::PatchMesh back;
+  atp::DecodePatch(bytes.data(), bytes.size(), grid, back);
+  EXPECT_EQ(back.TriangleCount(), repeated.TriangleCount());
+}
+
 TEST(PatchCodec, SmoothSurfacesArePredicted)
 {
   // A smooth height field: its grid points follow their parallelograms to within the
