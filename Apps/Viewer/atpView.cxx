@@ -15,9 +15,32 @@
 #include <QTimer>
 
 #include <cstdio>
+#include <cstdlib>
 
 namespace
 {
+
+QtMessageHandler QtsHandler = nullptr;
+
+/// Qt ends the process with abort() when it cannot open a window (a display it cannot reach):
+/// like any other error of a session, a line and exit code 1 instead.
+void ExitOnFatalMessage(QtMsgType type, const QMessageLogContext& context, const QString& message)
+{
+  if (type != QtFatalMsg)
+  {
+    QtsHandler(type, context, message);
+    return;
+  }
+  const QByteArray firstLine = message.section('\n', 0, 0).toLocal8Bit();
+  std::fprintf(stderr, "atp view: error: cannot open a window: %s\n", firstLine.constData());
+  std::_Exit(1);
+}
+
+bool Set(const char* variable)
+{
+  const char* value = std::getenv(variable);
+  return value && *value;
+}
 
 atp::CommandLine Options()
 {
@@ -84,6 +107,13 @@ int main(int argc, char** argv)
     return 2;
   }
 
+  if (!Set("DISPLAY") && !Set("WAYLAND_DISPLAY") && !Set("QT_QPA_PLATFORM"))
+  {
+    std::fprintf(stderr, "atp view: error: no display to open a window on (DISPLAY is not set): run "
+                         "it on a desktop, or under xvfb-run -a\n");
+    return 1;
+  }
+  QtsHandler = qInstallMessageHandler(ExitOnFatalMessage);
   QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
   QApplication application(argc, argv);
   QApplication::setApplicationName("atp-view");

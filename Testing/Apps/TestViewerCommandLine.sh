@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # atp-view scripted from the command line (needs a display: xvfb-run -a ctest): `atp view`
 # runs it, a screenshot of the converged view, a camera path recorded and played back, and one
-# clear line plus a non-zero exit code for a model it cannot open.
+# clear line plus a non-zero exit code for a model it cannot open or a display it cannot reach.
 #   TestViewerCommandLine.sh ATP_BINARY DATA_DIR
 set -u
 atp=$1
@@ -54,6 +54,11 @@ head -c 3000 "$work/torus.atp" >"$work/truncated.atp"
 expect 1 "error: .*truncated.atp" -- "$atp" view "$work/truncated.atp" --screenshot "$work/bad.png"
 echo "1 2 3" >"$work/bad.camera"
 expect 1 "error: .*bad.camera:1:" -- "$atp" view "$work/torus.atp" --play "$work/bad.camera" --screenshot "$work/bad.png"
+# No display to open a window on: the same, where Qt would abort.
+expect 1 "^atp view: error: no display to open a window on" -- \
+  env -u DISPLAY -u WAYLAND_DISPLAY -u QT_QPA_PLATFORM "$atp" view "$work/torus.atp" --screenshot "$work/bad.png"
+expect 1 "atp view: error: cannot open a window" -- \
+  env -u WAYLAND_DISPLAY -u QT_QPA_PLATFORM DISPLAY=:9876 "$atp" view "$work/torus.atp" --screenshot "$work/bad.png"
 [ ! -e "$work/bad.png" ] && passed=$((passed + 1)) || fail "a failed session wrote a screenshot"
 echo "$passed passed, $failures failed"
 [ "$failures" -eq 0 ]
