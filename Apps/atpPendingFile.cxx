@@ -17,9 +17,10 @@ namespace atp
 {
 namespace
 {
-/// The partial files of this process, removed by a handler when SIGINT, SIGTERM or SIGHUP ends
-/// it (a process killed by SIGKILL leaves them, under their ".partial-PID" names, never the
-/// output's). A slot is Free, being Filled by its owner, or Ready for the handler.
+/// The partial files of this process, removed by a handler when a signal that ends it by
+/// default does (TerminatingSignals; a process killed by SIGKILL leaves them, under their
+/// ".partial-PID" names, never the output's). A slot is Free, being Filled by its owner, or
+/// Ready for the handler.
 enum SlotState : int
 {
   Free,
@@ -27,6 +28,9 @@ enum SlotState : int
   Ready
 };
 constexpr std::size_t Slots = 8;
+/// Those a user, a terminal, a pipe or a resource limit sends; the rest mean a crash.
+constexpr int TerminatingSignals[] = { SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE, SIGALRM, SIGUSR1,
+  SIGUSR2, SIGXCPU, SIGXFSZ };
 char SlotPath[Slots][PATH_MAX];
 std::atomic<int> SlotStates[Slots];
 
@@ -43,7 +47,7 @@ int Register(const std::string& path)
 {
   static std::once_flag installed;
   std::call_once(installed, [] {
-    for (const int signal : { SIGINT, SIGTERM, SIGHUP })
+    for (const int signal : TerminatingSignals)
     {
       struct sigaction previous{};
       if (::sigaction(signal, nullptr, &previous) == 0 && previous.sa_handler == SIG_DFL)

@@ -1,6 +1,7 @@
 // An output file written beside its final name and renamed into place only when complete: a
-// failed or interrupted command (SIGINT, SIGTERM, SIGHUP) leaves no half-written file, and an
-// existing one untouched.
+// failed or interrupted command (SIGINT, SIGTERM, SIGQUIT, SIGHUP, SIGPIPE, ...: any signal but
+// SIGKILL that ends it by default and is no crash) leaves no half-written file, and an existing
+// one untouched.
 #ifndef atpPendingFile_h
 #define atpPendingFile_h
 

@@ -1,5 +1,6 @@
 #include "atpOutputPath.h"
 
+#include <climits>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -31,6 +32,11 @@ std::string OutputPathProblem(const std::string& path, const std::vector<std::st
         return "is the input " + input + ": refusing to replace it";
       }
     }
+  }
+  if (path.size() + SideFileSuffixBytes >= PATH_MAX)
+  {
+    return "path too long: at most " + std::to_string(PATH_MAX - 1 - SideFileSuffixBytes) +
+      " bytes leave room for the path of the file written before it";
   }
   const std::size_t slash = path.rfind('/');
   const std::string directory = slash == std::string::npos ? "." : path.substr(0, slash + 1);

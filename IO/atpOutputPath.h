@@ -19,7 +19,7 @@ constexpr std::size_t SideFileSuffixBytes = 32;
 /// file (not a directory), what is there now, if anything, must be a regular file (a device,
 /// FIFO or socket would be replaced by the rename, /dev/null too when run as root) and none of
 /// `inputs` (a build would replace its own input), and the name must leave room for the side
-/// file's suffix within the directory's limit on name length.
+/// file's suffix within the directory's limit on name length, and the path within the system's.
 VTKATPIO_EXPORT std::string OutputPathProblem(
   const std::string& path, const std::vector<std::string>& inputs = {});
 

@@ -77,6 +77,11 @@ expect 1 "self.ply: is the input .*self.ply: refusing to replace it" -- "$atp" b
 cmp -s "$data/bumpy-torus.ply" "$work/self.ply" || fail "a build replaced its own input"
 rm -f "$work/self.ply"
 expect 1 "file name too long" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/$(printf 'a%.0s' $(seq 240)).atp"
+deep=$work
+for i in $(seq 16); do deep=$deep/$(printf 'd%.0s' $(seq 250)); done
+mkdir -p "$deep"
+expect 1 "path too long" -- "$atp" build "$data/bumpy-torus.ply" -o "$deep/$(printf 'a%.0s' $(seq 50)).atp"
+rm -rf "$work/ddd"*
 expect 1 "scratch" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/x.atp" --scratch "$work/no/such/dir"
 # A failed build leaves an existing model as it was.
 cp "$work/x.atp" "$work/keep.atp"
@@ -147,15 +152,11 @@ rm -f "$work"/*.ply "$work"/*.vtp "$work"/*.stl "$work/l6.atp"
 expect 0 "wrote .*g.ply: [0-9]+ triangles" -- "$atp" generate -n 5000 --holes 2 -o "$work/g.ply"
 expect 0 "boundary edges" -- "$atp" build "$work/g.ply" -o "$work/g.atp" --quiet
 expect 1 "g.ply: cannot write the mesh: No such file" -- "$atp" generate -n 5000 -o "$work/no/such/dir/g.ply"
-# Interrupted (SIGTERM, SIGHUP; a background job of a script ignores SIGINT): the partial file
-# goes too.
+# Interrupted (SIGTERM, SIGHUP, SIGQUIT, a closed pipe; sent by timeout, since a background job
+# of a script ignores SIGINT and SIGQUIT): the partial file goes too.
 mkdir "$work/interrupted"
-for signal in TERM HUP; do
-  "$atp" generate -n 20000000 -o "$work/interrupted/g.ply" > /dev/null 2>&1 &
-  pid=$!
-  sleep 0.3
-  kill -"$signal" "$pid" 2> /dev/null
-  wait "$pid"
+for signal in TERM HUP QUIT PIPE; do
+  timeout -s "$signal" 0.3 "$atp" generate -n 20000000 -o "$work/interrupted/g.ply" > /dev/null 2>&1
   [ -z "$(ls "$work/interrupted")" ] || fail "SIG$signal left $(ls "$work/interrupted")"
   rm -f "$work/interrupted"/*
 done
