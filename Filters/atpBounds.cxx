@@ -148,6 +148,10 @@ void StoreSphere(const Sphere& sphere, float out[4])
 Sphere LoadSphere(const float in[4])
 {
   Sphere s;
+  if (in[3] == 0)
+  {
+    return s; // StoreSphere's empty sphere: any sphere it stores has a margin
+  }
   for (int a = 0; a < 3; ++a)
   {
     s.Center[a] = in[a];

@@ -25,8 +25,11 @@ VTKATPFILTERS_EXPORT Sphere EnclosingSphere(const float* positions, std::size_t 
 VTKATPFILTERS_EXPORT Sphere EnclosingSphere(const std::vector<Sphere>& spheres);
 
 /// Stores a sphere as four floats that still enclose everything it enclosed: the radius grows by
-/// the rounding of the center and is rounded up. An empty sphere stores as radius 0 at the origin.
+/// the rounding of the center and is rounded up (never 0). An empty sphere stores as radius 0 at
+/// the origin.
 VTKATPFILTERS_EXPORT void StoreSphere(const Sphere& sphere, float out[4]);
+/// StoreSphere's floats as a sphere: radius 0 loads as empty (not as the origin, which an
+/// enclosing sphere would then have to hold).
 VTKATPFILTERS_EXPORT Sphere LoadSphere(const float in[4]);
 
 /// The directions of a set of normals: every one is within the half angle of the axis.

@@ -176,6 +176,14 @@ TEST(Bounds, StoredSpheresOnlyGrow)
   float empty[4];
   atp::StoreSphere(atp::Sphere(), empty);
   EXPECT_EQ(empty[3], 0);
+  EXPECT_TRUE(atp::LoadSphere(empty).IsEmpty());
+  // A point at the origin still stores with a radius, so it never reads back as empty.
+  float point[4];
+  atp::Sphere origin;
+  origin.Radius = 0;
+  atp::StoreSphere(origin, point);
+  EXPECT_GT(point[3], 0);
+  EXPECT_FALSE(atp::LoadSphere(point).IsEmpty());
 }
 
 TEST(Bounds, NormalConeHoldsEveryFaceNormal)

@@ -543,11 +543,12 @@ TEST_F(Construction, SaturatedBoundsAreEqualOverDiamondsAndMonotone)
       }
     }
     EXPECT_GE(n.SaturatedError, n.Error);
+    // An empty patch's sphere, radius 0, holds nothing.
     const auto inside = [](const float* inner, const float* outer) {
       const double d = std::sqrt(double(inner[0] - outer[0]) * (inner[0] - outer[0]) +
         double(inner[1] - outer[1]) * (inner[1] - outer[1]) +
         double(inner[2] - outer[2]) * (inner[2] - outer[2]));
-      return d + inner[3] <= outer[3];
+      return inner[3] == 0 || d + inner[3] <= outer[3];
     };
     EXPECT_TRUE(inside(n.Sphere, n.SaturatedSphere)) << "node " << i;
     if (n.Parent >= 0)
@@ -575,6 +576,38 @@ TEST_F(Construction, SaturatedBoundsAreEqualOverDiamondsAndMonotone)
       ASSERT_LE(d, n.Sphere[3] + grid.MaxError() * 2) << "node " << i;
     }
   }
+}
+
+// An empty patch's sphere encloses nothing. Loaded as the origin with radius 0, it once made
+// the saturated sphere of every diamond with an empty member reach the origin: far larger
+// spheres, and cuts refined for nothing.
+TEST_F(Construction, EmptyPatchesLeaveSaturatedSpheresWhereTheSurfaceIs)
+{
+  vtkNew<vtkPolyData> away;
+  away->DeepCopy(Mesh);
+  double bounds[6];
+  away->GetBounds(bounds);
+  const double size = bounds[1] - bounds[0];
+  for (vtkIdType p = 0; p < away->GetNumberOfPoints(); ++p)
+  {
+    double x[3];
+    away->GetPoint(p, x);
+    away->GetPoints()->SetPoint(p, x[0] + 10 * size, x[1] + 10 * size, x[2] + 10 * size);
+  }
+  const std::string path = TempPath("away.atp");
+  ASSERT_EQ(BuildModel(away, path, 2), 1);
+  const atp::ModelFile model = atp::ModelFile::Open(path);
+  std::size_t empty = 0;
+  for (std::uint32_t i = 0; i < model.NodeCount(); ++i)
+  {
+    const atp::ModelNode& n = model.Node(i);
+    empty += n.TriangleCount == 0;
+    const float* s = n.SaturatedSphere;
+    const double fromOrigin = std::sqrt(double(s[0]) * s[0] + double(s[1]) * s[1] + double(s[2]) * s[2]);
+    EXPECT_TRUE(s[3] == 0 || fromOrigin > s[3]) << "node " << i << " reaches the origin";
+  }
+  EXPECT_GT(empty, 0u) << "the model needs empty patches to test";
+  std::remove(path.c_str());
 }
 
 TEST_F(Construction, SpheresAreSmallestAndConesHoldTheNormalsBelow)
