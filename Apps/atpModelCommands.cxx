@@ -1,6 +1,7 @@
 #include "atpModelCommands.h"
 
 #include "atpCommandLine.h"
+#include "atpModelBoundsCheck.h"
 #include "atpModelFile.h"
 #include "atpPatchCodec.h"
 #include "atpProgressReport.h"
@@ -110,7 +111,10 @@ int VerifyCommand(const std::vector<std::string>& arguments)
 {
   CommandLine cl("verify",
     "Checks a model completely: header, node structure and invariants, the checksum of every\n"
-    "section and patch, and that every patch decodes. Exit code 0: valid; 1: not.");
+    "section and patch, that every patch decodes to what its node says (triangle and vertex\n"
+    "counts, a sphere holding its vertices, a cone holding its face normals), and the\n"
+    "saturation (equal over each diamond, spheres nested down the tree).\n"
+    "Exit code 0: valid; 1: not.");
   cl.AddPositional("MODEL", "a .atp model");
   if (!cl.Parse(arguments))
   {
@@ -128,8 +132,22 @@ int VerifyCommand(const std::vector<std::string>& arguments)
     }
   }();
   std::vector<std::string> problems = model.Verify();
+  const auto note = [&](const std::vector<std::string>& found) {
+    for (const std::string& problem : found)
+    {
+      problems.push_back(path + ": " + problem);
+    }
+  };
   if (problems.empty())
   {
+    try
+    {
+      note(SaturationProblems(model, CutIndex(model)));
+    }
+    catch (const ModelError& e)
+    {
+      problems.push_back(e.what());
+    }
     PatchMesh patch;
     for (std::size_t i = 0; i < model.NodeCount(); ++i)
     {
@@ -142,6 +160,7 @@ int VerifyCommand(const std::vector<std::string>& arguments)
             std::to_string(patch.TriangleCount()) + " triangles, the node says " +
             std::to_string(model.Node(i).TriangleCount));
         }
+        note(PatchBoundsProblems(i, model.Node(i), patch));
       }
       catch (const PatchFormatError& e)
       {

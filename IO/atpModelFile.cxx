@@ -84,6 +84,13 @@ bool AllFinite(const double* values, std::size_t count)
   return std::all_of(values, values + count, [](double v) { return std::isfinite(v); });
 }
 
+/// Reserved bytes: zero in every version that reads them, so a later one may give them meaning.
+template <std::size_t Size>
+bool AllZero(const std::uint8_t (&bytes)[Size])
+{
+  return std::all_of(bytes, bytes + Size, [](std::uint8_t b) { return b == 0; });
+}
+
 } // namespace
 
 ModelFile ModelFile::Open(const std::string& path)
@@ -330,6 +337,10 @@ void ModelFile::ValidateHeader()
   {
     Throw("error scale is not finite and non-negative");
   }
+  if (!AllZero(h.Reserved))
+  {
+    Throw("reserved header bytes are not zero");
+  }
 }
 
 void ModelFile::ValidateNodes()
@@ -490,6 +501,10 @@ void ModelFile::ValidateNodes()
     if (n.SaturatedError < n.Error)
     {
       bad(Cat("saturated error ", n.SaturatedError, " below its own error ", n.Error));
+    }
+    if (!AllZero(n.Reserved))
+    {
+      bad("reserved bytes are not zero");
     }
   }
   if (triangles != h.StoredTriangles)

@@ -1,5 +1,6 @@
 // The .atp container: round trip, one failing file per validation rule, random corruption and
 // truncation never crash, and the writer never leaves a partial or damaged file behind.
+#include "ModelRewrite.h"
 #include "atpChecksum.h"
 #include "atpModelFile.h"
 #include "atpModelFormat.h"
@@ -30,6 +31,12 @@
 #include <unistd.h>
 #include <utility>
 #include <vector>
+
+using atp::test::Edit;
+using atp::test::ReadAll;
+using atp::test::Rewrite;
+using atp::test::Seal;
+using atp::test::WriteAll;
 
 namespace
 {
@@ -80,18 +87,6 @@ public:
 private:
   fs::path Path;
 };
-
-std::vector<std::uint8_t> ReadAll(const std::string& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(in), {});
-}
-
-void WriteAll(const std::string& path, const std::vector<std::uint8_t>& bytes)
-{
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-}
 
 bool SameBytes(const std::uint8_t* data, const std::vector<std::uint8_t>& expected)
 {
@@ -198,39 +193,6 @@ std::vector<ModelNode> Write(const Model& m, const std::string& path)
   std::memcpy(nodes.data(), bytes.data() + ModelWriter::NodeSectionOffset(),
     nodes.size() * sizeof(ModelNode));
   return nodes;
-}
-
-enum class Seal
-{
-  None,       ///< leave every checksum as it was
-  HeaderOnly, ///< a node edit shows up as a node section checksum mismatch
-  All         ///< only the edit itself is wrong
-};
-
-using Edit = std::function<void(ModelHeader&, std::vector<ModelNode>&, std::vector<std::uint8_t>&)>;
-
-// Rewrites the header and nodes of the model at `path` through `edit`, which may also change
-// raw bytes outside the records, then recomputes the checksums `seal` asks for.
-void Rewrite(const std::string& path, const Edit& edit, Seal seal)
-{
-  std::vector<std::uint8_t> raw = ReadAll(path);
-  ModelHeader h;
-  std::memcpy(&h, raw.data(), sizeof(h));
-  const std::size_t nodeOffset = std::size_t(h.NodeSectionOffset);
-  std::vector<ModelNode> nodes(std::size_t(h.NodeCount));
-  std::memcpy(nodes.data(), raw.data() + nodeOffset, nodes.size() * sizeof(ModelNode));
-  edit(h, nodes, raw);
-  std::memcpy(raw.data() + nodeOffset, nodes.data(), nodes.size() * sizeof(ModelNode));
-  if (seal == Seal::All)
-  {
-    h.NodeSectionChecksum = Checksum(raw.data() + nodeOffset, nodes.size() * sizeof(ModelNode));
-  }
-  if (seal != Seal::None)
-  {
-    h.HeaderChecksum = Checksum(&h, offsetof(ModelHeader, HeaderChecksum));
-  }
-  std::memcpy(raw.data(), &h, sizeof(h));
-  WriteAll(path, raw);
 }
 
 std::string OpenError(const std::string& path)
@@ -514,6 +476,10 @@ TEST(ModelFile, EveryValidationRuleHasItsOwnError)
       "stored triangles, the nodes hold" },
     { "depth", Seal::All, [](H& h, N&, R&) { h.Depth = 3; },
       "header says depth 3, the deepest node is at level 2" },
+    { "header reserved", Seal::All, [](H& h, N&, R&) { h.Reserved[100] = 1; },
+      "reserved header bytes are not zero" },
+    { "node reserved", Seal::All, [](H&, N& n, R&) { n[7].Reserved[23] = 1; },
+      "node 7: reserved bytes are not zero" },
   };
   for (const Rule& rule : rules)
   {
