@@ -110,6 +110,27 @@ int ExtractCommand(const std::vector<std::string>& arguments)
   const double tolerance = cl.GetNumber("tolerance", 1e-3, 1e6);
   const double viewAngle = cl.GetNumber("view-angle", 1, 179);
   const std::vector<double> up = cl.GetNumbers("up", 3);
+  // The default camera looks down -z; a view needs a direction, and an up not along it.
+  double direction[3] = { 0, 0, -1 };
+  if (cl.Has("camera"))
+  {
+    const std::vector<double> eyeAndFocus = cl.GetNumbers("camera", 6);
+    for (int a = 0; a < 3; ++a)
+    {
+      direction[a] = eyeAndFocus[std::size_t(a) + 3] - eyeAndFocus[std::size_t(a)];
+    }
+    if (direction[0] == 0 && direction[1] == 0 && direction[2] == 0)
+    {
+      throw UsageError("--camera: the eye and the focal point are the same point");
+    }
+  }
+  const double across[3] = { up[1] * direction[2] - up[2] * direction[1],
+    up[2] * direction[0] - up[0] * direction[2], up[0] * direction[1] - up[1] * direction[0] };
+  const auto length = [](const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); };
+  if (!(length(across) > 1e-9 * length(up.data()) * length(direction)))
+  {
+    throw UsageError("--up must be a direction that is not along the view direction");
+  }
 
   // Written beside OUT and renamed when complete: a failed write leaves no file that looks
   // like a mesh, and an existing OUT untouched.

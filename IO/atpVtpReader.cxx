@@ -3,6 +3,7 @@
 #include "atpInputFile.h"
 #include "atpVtkErrors.h"
 
+#include <vtkExecutive.h>
 #include <vtkNew.h>
 #include <vtkXMLPolyDataReader.h>
 
@@ -17,6 +18,8 @@ vtkSmartPointer<vtkPolyData> ReadVtpFile(const std::string& path)
   reader->AddObserver(vtkCommand::ErrorEvent, errors);
   reader->AddObserver(vtkCommand::WarningEvent, errors);
   reader->SetParserErrorObserver(errors); // malformed XML
+  // The executive's own report of the failure, with a dump of its request, would follow.
+  reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
   reader->SetFileName(path.c_str());
   reader->Update();
   if (!errors->FirstError.empty() || reader->GetErrorCode() != 0)
