@@ -3,6 +3,8 @@
 #include "vtk_zlib.h"
 
 #include <cstdint>
+#include <cstring>
+#include <sstream>
 
 namespace atp
 {
@@ -12,6 +14,9 @@ namespace
 /// follow at fixed offsets.
 constexpr std::int32_t Nifti1Bytes = 348, Nifti2Bytes = 540;
 constexpr std::size_t Nifti1DataType = 70, Nifti2DataType = 12; // bitpix follows it
+/// Where a single-file header says its voxels start (NIfTI-1: a float; NIfTI-2: a 64-bit
+/// integer), never before the header and its 4 extension flag bytes end.
+constexpr std::size_t Nifti1VoxOffset = 108, Nifti2VoxOffset = 168;
 
 /// NIfTI datatype codes of one scalar per voxel, with their bits per voxel.
 struct ScalarType
@@ -58,7 +63,30 @@ std::string NiftiHeaderProblem(const std::string& path)
   {
     return "not a NIfTI header (it does not start with its size, 348 or 540)";
   }
-  const std::size_t at = size == std::uint32_t(Nifti1Bytes) ? Nifti1DataType : Nifti2DataType;
+  const bool nifti1 = size == std::uint32_t(Nifti1Bytes);
+  double voxOffset = 0;
+  if (nifti1)
+  {
+    const std::uint32_t bits = Read(header + Nifti1VoxOffset, 4, bigEndian);
+    float value;
+    std::memcpy(&value, &bits, 4);
+    voxOffset = value;
+  }
+  else
+  {
+    const std::uint64_t low = Read(header + Nifti2VoxOffset + (bigEndian ? 4 : 0), 4, bigEndian);
+    const std::uint64_t high = Read(header + Nifti2VoxOffset + (bigEndian ? 0 : 4), 4, bigEndian);
+    voxOffset = double(std::int64_t(high << 32 | low));
+  }
+  const double headerEnd = double(size) + 4;
+  if (!(voxOffset >= headerEnd))
+  {
+    std::ostringstream message;
+    message << "its NIfTI header puts the voxels at byte " << voxOffset << ", inside the header ("
+            << headerEnd << " bytes with the extension flags)";
+    return message.str();
+  }
+  const std::size_t at = nifti1 ? Nifti1DataType : Nifti2DataType;
   const auto code = std::int16_t(Read(header + at, 2, bigEndian));
   const auto bits = std::int16_t(Read(header + at + 2, 2, bigEndian));
   for (const ScalarType& type : ScalarTypes)

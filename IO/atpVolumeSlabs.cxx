@@ -15,6 +15,8 @@
 #include <vtkXMLReader.h>
 
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 #include <new>
 #include <cctype>
 
@@ -162,6 +164,13 @@ VolumeSlabReader VolumeSlabReader::Open(const std::string& path, const RawVolume
     {
       volume.Slope = reader->GetRescaleSlope();
       volume.Intercept = reader->GetRescaleIntercept();
+    }
+    if (!std::isfinite(volume.Slope) || !std::isfinite(volume.Intercept))
+    {
+      std::ostringstream message;
+      message << "its NIfTI value scaling is not finite (scl_slope " << volume.Slope << ", scl_inter "
+              << volume.Intercept << ")";
+      file.Fail(message.str());
     }
     return volume;
   }

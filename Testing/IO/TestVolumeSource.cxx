@@ -683,13 +683,30 @@ TEST_F(VolumeSource, Errors)
   this->ExpectError(patched("unknown.nii", 12345, 32), "NIfTI datatype 12345 is not one scalar per voxel", 2.5);
   this->ExpectError(patched("rgb.nii", 128, 24), "NIfTI datatype 128 is not one scalar per voxel", 2.5);
   this->ExpectError(patched("bits.nii", 16, 8), "datatype 16 has 32 bits per voxel, the header says 8", 2.5);
-  // A big-endian header: its size, datatype and bits read the other way round.
+  // A header that puts the voxels inside itself (vox_offset, a float at byte 108), and value
+  // scaling that is not finite (scl_slope and scl_inter, floats at bytes 112 and 116).
+  const auto withFloat = [&](const std::string& name, std::size_t at, float value) {
+    std::ifstream in(this->Path("whole.nii"), std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::memcpy(&bytes[at], &value, 4);
+    return this->Write(name, bytes);
+  };
+  this->ExpectError(withFloat("offset.nii", 108, 10),
+    "its NIfTI header puts the voxels at byte 10, inside the header (352 bytes", 2.5);
+  this->ExpectError(withFloat("offset-nan.nii", 108, std::nanf("")), "puts the voxels at byte nan", 2.5);
+  this->ExpectError(withFloat("slope.nii", 112, std::nanf("")),
+    "its NIfTI value scaling is not finite (scl_slope nan", 2.5);
+  this->ExpectError(withFloat("intercept.nii", 116, std::numeric_limits<float>::infinity()),
+    "its NIfTI value scaling is not finite (scl_slope", 2.5);
+  // A big-endian header: its size, datatype, bits and voxel offset read the other way round.
   {
     std::ifstream in(this->Path("whole.nii"), std::ios::binary);
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    const unsigned char big[] = { 0, 0, 1, 92 /* 348 */, 6, 0 /* 1536 */, 0, 128 /* 128 */ };
+    const unsigned char big[] = { 0, 0, 1, 92 /* 348 */, 6, 0 /* 1536 */, 0, 128 /* 128 */,
+      0x43, 0xb0, 0, 0 /* 352.0f */ };
     std::memcpy(&bytes[0], big, 4);
     std::memcpy(&bytes[70], big + 4, 4);
+    std::memcpy(&bytes[108], big + 8, 4);
     this->ExpectError(this->Write("big.nii", bytes), "NIfTI datatype 1536 is not one scalar per voxel", 2.5);
   }
 }
