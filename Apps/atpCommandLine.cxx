@@ -82,7 +82,7 @@ bool CommandLine::Parse(const std::vector<std::string>& arguments)
         Values[o->Long] = "1";
         continue;
       }
-      if (i + 1 >= arguments.size())
+      if (i + 1 >= arguments.size() || arguments[i + 1].empty())
       {
         throw UsageError("option " + a + " needs a value (" + o->ValueName + ")");
       }

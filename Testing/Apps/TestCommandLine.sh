@@ -132,6 +132,8 @@ near=$("$atp" extract "$work/x.atp" --camera 0,0,6,0,0,0 -o "$work/near.ply" | s
 [ "$far" -lt "$near" ] || { echo "FAIL: a far camera's cut ($far) is not coarser than a near one's ($near)"; failures=$((failures + 1)); }
 expect 2 "must name a .ply, .vtp or .stl" -- "$atp" extract "$work/x.atp" -o "$work/x.obj"
 expect 2 "missing -o" -- "$atp" extract "$work/x.atp"
+expect 2 "option -o needs a value \(OUT\)" -- "$atp" extract "$work/x.atp" -o ""
+expect 2 "option --output needs a value \(OUT.atp\)" -- "$atp" build "$data/bumpy-torus.ply" --output ""
 expect 2 "must name a .ply" -- "$atp" extract "$work/x.atp" -o x
 # Looking away from the model: an empty mesh, still a valid file.
 expect 0 "wrote .*away.ply: 0 triangles from 0 patches" -- "$atp" extract "$work/x.atp" --camera 0,0,30,0,0,60 -o "$work/away.ply"
