@@ -484,18 +484,6 @@ void SumByteLanes(std::uint8_t* data, std::size_t count)
   }
 }
 
-/// The most triangles around one vertex (a triangle with a repeated corner counts twice there).
-std::uint32_t LargestValence(const std::vector<std::uint32_t>& indices, std::size_t vertexCount)
-{
-  std::vector<std::uint32_t> valence(vertexCount, 0);
-  std::uint32_t largest = 0;
-  for (const std::uint32_t v : indices)
-  {
-    largest = std::max(largest, ++valence[v]);
-  }
-  return largest;
-}
-
 /// Undoes SumByteLanes: each byte becomes the zigzag code of its difference from the byte
 /// Stride places before it. Eight bytes at a time from the end back, so every byte still reads
 /// an unchanged predecessor.
@@ -516,6 +504,18 @@ void DifferenceByteLanes(std::uint8_t* data, std::size_t count)
     const std::uint64_t z = ZigZagBytes(SubtractBytes(data[j], j >= Stride ? data[j - Stride] : 0));
     data[j] = std::uint8_t(z);
   }
+}
+
+/// The most triangles around one vertex (a triangle with a repeated corner counts twice there).
+std::uint32_t LargestValence(const std::vector<std::uint32_t>& indices, std::size_t vertexCount)
+{
+  std::vector<std::uint32_t> valence(vertexCount, 0);
+  std::uint32_t largest = 0;
+  for (const std::uint32_t v : indices)
+  {
+    largest = std::max(largest, ++valence[v]);
+  }
+  return largest;
 }
 } // namespace
 
