@@ -1,5 +1,6 @@
 #include "atpModelBoundsCheck.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <sstream>
