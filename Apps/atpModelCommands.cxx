@@ -160,7 +160,7 @@ int VerifyCommand(const std::vector<std::string>& arguments)
             std::to_string(patch.TriangleCount()) + " triangles, the node says " +
             std::to_string(model.Node(i).TriangleCount));
         }
-        note(PatchBoundsProblems(i, model.Node(i), patch));
+        note(PatchProblems(model.Header(), i, model.Node(i), patch));
       }
       catch (const PatchFormatError& e)
       {

@@ -48,13 +48,20 @@ double Length(const double* v)
 }
 } // namespace
 
-std::vector<std::string> PatchBoundsProblems(std::size_t i, const ModelNode& node, const PatchMesh& patch)
+std::vector<std::string> PatchProblems(
+  const ModelHeader& header, std::size_t i, const ModelNode& node, const PatchMesh& patch)
 {
   std::vector<std::string> problems;
   if (node.VertexCount != patch.VertexCount())
   {
     problems.push_back(Problem(i, "the patch holds ", patch.VertexCount(), " vertices, the node says ",
       node.VertexCount));
+  }
+  const bool colors = (header.Flags & ModelFlagColors) != 0;
+  if (patch.VertexCount() > 0 && patch.HasColors() != colors)
+  {
+    problems.push_back(Problem(i, colors ? "the patch has no colors, the model says patches have"
+                                         : "the patch has colors, the model says patches have none"));
   }
   for (std::size_t v = 0; v < patch.VertexCount(); ++v)
   {
@@ -70,6 +77,10 @@ std::vector<std::string> PatchBoundsProblems(std::size_t i, const ModelNode& nod
   if (node.ConeCos > -1)
   {
     const double axis[3] = { node.ConeAxis[0], node.ConeAxis[1], node.ConeAxis[2] };
+    if (std::abs(Length(axis) - 1) > 1e-5)
+    {
+      problems.push_back(Problem(i, "its normal cone's axis has length ", Length(axis), ", not 1"));
+    }
     const double halfAngle = std::acos(std::min(1.0, double(node.ConeCos)));
     for (std::size_t t = 0; t < patch.TriangleCount(); ++t)
     {
@@ -93,7 +104,7 @@ std::vector<std::string> PatchBoundsProblems(std::size_t i, const ModelNode& nod
       const double c[3] = { n[1] * axis[2] - n[2] * axis[1], n[2] * axis[0] - n[0] * axis[2],
         n[0] * axis[1] - n[1] * axis[0] };
       const double angle = std::atan2(Length(c), n[0] * axis[0] + n[1] * axis[1] + n[2] * axis[2]);
-      if (Length(axis) == 0 || angle > halfAngle + AngleSlack)
+      if (angle > halfAngle + AngleSlack)
       {
         problems.push_back(Problem(i, "the normal of triangle ", t, " lies outside the normal cone (",
           angle * 180 / M_PI, " degrees from its axis, half angle ", halfAngle * 180 / M_PI, ")"));

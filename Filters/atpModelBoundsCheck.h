@@ -17,11 +17,13 @@
 namespace atp
 {
 
-/// Node `i` against its decoded patch: the node's vertex count is the patch's, its sphere holds
-/// every vertex, its cone every face normal (degenerate faces aside) and its saturated sphere
-/// its sphere. Each problem reads "node I: what is wrong"; at most one of each kind.
-VTKATPFILTERS_EXPORT std::vector<std::string> PatchBoundsProblems(
-  std::size_t i, const ModelNode& node, const PatchMesh& patch);
+/// Node `i` of a model with `header` against its decoded patch: the node's vertex count is the
+/// patch's, the patch has colors as the header says, the node's sphere holds every vertex, its
+/// cone (a unit axis, unless it holds every direction) every face normal (degenerate faces
+/// aside) and its saturated sphere its sphere. Each problem reads "node I: what is wrong"; at
+/// most one of each kind.
+VTKATPFILTERS_EXPORT std::vector<std::string> PatchProblems(
+  const ModelHeader& header, std::size_t i, const ModelNode& node, const PatchMesh& patch);
 
 /// Every diamond's members (`diamonds`, built from `model`) hold one saturated error and one
 /// saturated sphere, and a node's saturated sphere lies within its parent's. Each problem reads

@@ -337,6 +337,10 @@ void ModelFile::ValidateHeader()
   {
     Throw("error scale is not finite and non-negative");
   }
+  if (h.Flags & ~(ModelFlagColors | ModelFlagFastCacheOrder))
+  {
+    Throw("unknown flags " + Hex(h.Flags & ~(ModelFlagColors | ModelFlagFastCacheOrder)));
+  }
   if (!AllZero(h.Reserved))
   {
     Throw("reserved header bytes are not zero");

@@ -24,7 +24,7 @@ std::vector<std::string> AllPatchProblems(const atp::ModelFile& model)
   for (std::size_t i = 0; i < model.NodeCount(); ++i)
   {
     model.DecodePatch(i, patch);
-    for (const std::string& p : atp::PatchBoundsProblems(i, model.Node(i), patch))
+    for (const std::string& p : atp::PatchProblems(model.Header(), i, model.Node(i), patch))
     {
       problems.push_back(p);
     }
@@ -68,45 +68,56 @@ TEST(ModelBoundsCheck, BoundsThatMissTheirPatchAreReported)
   atp::PatchMesh patch;
   model.DecodePatch(i, patch);
   const atp::ModelNode good = model.Node(i);
-  ASSERT_TRUE(atp::PatchBoundsProblems(i, good, patch).empty());
+  ASSERT_TRUE(atp::PatchProblems(model.Header(), i, good, patch).empty());
   const std::string node = "node " + std::to_string(i) + ": ";
 
   atp::ModelNode bad = good;
   bad.VertexCount -= 1;
-  ExpectOneProblem(atp::PatchBoundsProblems(i, bad, patch), node + "the patch holds ");
+  ExpectOneProblem(atp::PatchProblems(model.Header(), i, bad, patch), node + "the patch holds ");
 
   bad = good;
   bad.Sphere[3] *= 0.9f;
-  ExpectOneProblem(atp::PatchBoundsProblems(i, bad, patch), node + "vertex ");
+  ExpectOneProblem(atp::PatchProblems(model.Header(), i, bad, patch), node + "vertex ");
 
   bad = good;
   bad.Sphere[0] += 0.2f * good.Sphere[3];
   bad.SaturatedSphere[3] *= 2; // only the tight sphere is off
-  ExpectOneProblem(atp::PatchBoundsProblems(i, bad, patch), node + "vertex ");
+  ExpectOneProblem(atp::PatchProblems(model.Header(), i, bad, patch), node + "vertex ");
 
   bad = good;
   bad.ConeCos = 0.5f * (1 + good.ConeCos); // narrower
-  ExpectOneProblem(atp::PatchBoundsProblems(i, bad, patch), "lies outside the normal cone");
+  ExpectOneProblem(atp::PatchProblems(model.Header(), i, bad, patch), "lies outside the normal cone");
 
   bad = good;
   for (float& a : bad.ConeAxis)
   {
     a = -a;
   }
-  ExpectOneProblem(atp::PatchBoundsProblems(i, bad, patch), "lies outside the normal cone");
+  ExpectOneProblem(atp::PatchProblems(model.Header(), i, bad, patch), "lies outside the normal cone");
+
+  bad = good;
+  for (float& a : bad.ConeAxis)
+  {
+    a *= 2; // the same directions, but the cut reads the axis as a unit vector
+  }
+  ExpectOneProblem(atp::PatchProblems(model.Header(), i, bad, patch), "its normal cone's axis has length 1.99");
 
   bad = good;
   bad.ConeAxis[0] = bad.ConeAxis[1] = bad.ConeAxis[2] = 0;
-  ExpectOneProblem(atp::PatchBoundsProblems(i, bad, patch), "lies outside the normal cone");
+  ExpectProblem(atp::PatchProblems(model.Header(), i, bad, patch), "its normal cone's axis has length 0, not 1");
 
   bad = good;
   bad.ConeCos = -1; // every direction: any axis will do
   bad.ConeAxis[0] = bad.ConeAxis[1] = bad.ConeAxis[2] = 0;
-  EXPECT_TRUE(atp::PatchBoundsProblems(i, bad, patch).empty());
+  EXPECT_TRUE(atp::PatchProblems(model.Header(), i, bad, patch).empty());
+
+  atp::ModelHeader colored = model.Header();
+  colored.Flags |= atp::ModelFlagColors;
+  ExpectOneProblem(atp::PatchProblems(colored, i, good, patch), node + "the patch has no colors, the model says patches have");
 
   bad = good;
   bad.SaturatedSphere[3] = 0.5f * good.Sphere[3];
-  ExpectOneProblem(atp::PatchBoundsProblems(i, bad, patch), "its sphere pokes out of its saturated sphere");
+  ExpectOneProblem(atp::PatchProblems(model.Header(), i, bad, patch), "its sphere pokes out of its saturated sphere");
 }
 
 TEST(ModelBoundsCheck, SaturationThatDiffersOrDoesNotNestIsReported)

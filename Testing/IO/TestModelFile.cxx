@@ -476,6 +476,7 @@ TEST(ModelFile, EveryValidationRuleHasItsOwnError)
       "stored triangles, the nodes hold" },
     { "depth", Seal::All, [](H& h, N&, R&) { h.Depth = 3; },
       "header says depth 3, the deepest node is at level 2" },
+    { "unknown flag", Seal::All, [](H& h, N&, R&) { h.Flags |= 4; }, "unknown flags 0x4" },
     { "header reserved", Seal::All, [](H& h, N&, R&) { h.Reserved[100] = 1; },
       "reserved header bytes are not zero" },
     { "node reserved", Seal::All, [](H&, N& n, R&) { n[7].Reserved[23] = 1; },
