@@ -101,6 +101,11 @@ struct WindowCache
   /// Did not fit beside what the view pins: not asked for again until the view changes
   /// (asking would only decode them again and again for nothing).
   std::vector<std::uint8_t> NoRoom;
+  /// Its last frame's requests: with several windows, the fetcher decodes for all of them.
+  std::vector<std::uint32_t> Wanted;
+  /// Patches it asked for that arrived while another window drew: uploaded in its own context
+  /// when it draws next.
+  std::vector<atp::RenderPatch> Pending;
   atp::ViewPoint LastView;
   std::size_t Stride = atp::RenderPatchStride(false);
   atp::BufferArena Arena{ Stride };
@@ -200,9 +205,12 @@ struct WindowCache
       Layout->Bind();
       Layout->AddAttributeArray(program, Buffer, "vertexMC", int(atp::RenderPatchPositionOffset),
         Stride, VTK_FLOAT, 3, false);
-      Layout->AddAttributeArray(program, Buffer, "normalMC", int(atp::RenderPatchNormalOffset),
-        Stride, VTK_SHORT, 4, true);
-      if (colors)
+      if (program->IsAttributeUsed("normalMC")) // not by an unlit actor's shader
+      {
+        Layout->AddAttributeArray(program, Buffer, "normalMC", int(atp::RenderPatchNormalOffset),
+          Stride, VTK_SHORT, 4, true);
+      }
+      if (colors && program->IsAttributeUsed("colorMC"))
       {
         Layout->AddAttributeArray(program, Buffer, "colorMC", int(atp::RenderPatchColorOffset),
           Stride, VTK_UNSIGNED_CHAR, 4, true);
@@ -230,12 +238,21 @@ struct vtkATPMapper::Internals
   std::set<std::string> ReportedErrors;
   std::map<vtkWindow*, std::unique_ptr<WindowCache>> Windows;
   atp::CutResult Cut;
-  std::vector<std::uint32_t> Wanted; ///< requested by the last frame
   std::vector<atp::RenderPatch> Arrived;
+  std::vector<std::uint32_t> Requests; ///< every window's, for the fetcher
+  std::vector<std::uint8_t> Requested; ///< per node: in Requests
   atp::RenderStatistics Stats;
   Clock::time_point Start = Clock::now();
   vtkNew<vtkMatrix4x4> ModelToDevice, ModelToView;
   vtkNew<vtkMatrix3x3> NormalMatrix;
+
+  /// No model, or one that cannot be drawn: nothing drawn and nothing coming, so a
+  /// render-until-converged loop ends, and no figures of an earlier model linger.
+  void NothingToDraw()
+  {
+    Stats = atp::RenderStatistics();
+    Stats.Converged = true;
+  }
 
   void Reset()
   {
@@ -246,7 +263,6 @@ struct vtkATPMapper::Internals
     Model.reset();
     Corrupt.clear();
     ReportedErrors.clear();
-    Wanted.clear();
   }
 };
 
@@ -297,6 +313,11 @@ double* vtkATPMapper::GetBounds()
     this->GetInputAlgorithm()->Update();
   }
   vtkATPModel* input = this->GetInput();
+  if (!input || !input->GetSharedModelFile())
+  {
+    // Renderers skip a prop without bounds, so Render would never say so.
+    this->Impl->NothingToDraw();
+  }
   if (input)
   {
     input->GetBounds(this->Bounds);
@@ -329,14 +350,14 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   }
   vtkATPModel* input = this->GetInput();
   std::shared_ptr<const atp::ModelFile> model = input ? input->GetSharedModelFile() : nullptr;
-  if (!model)
+  if (!model || model == in.Unusable)
   {
-    vtkErrorMacro(<< "no model to draw: the input is empty");
-    return;
-  }
-  if (model == in.Unusable)
-  {
-    return; // reported once
+    in.NothingToDraw();
+    if (!model)
+    {
+      vtkErrorMacro(<< "no model to draw: the input is empty");
+    }
+    return; // an unusable model was reported once
   }
   if (model != in.Model)
   {
@@ -348,6 +369,7 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     catch (const std::exception& e)
     {
       in.Unusable = model;
+      in.NothingToDraw();
       vtkErrorMacro(<< e.what());
       return;
     }
@@ -378,15 +400,21 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   }
   WindowCache& cache = *slot;
   const bool colors = (model->Header().Flags & atp::ModelFlagColors) != 0;
-  if (cache.ModelGeneration != in.ModelGeneration ||
-    std::size_t(this->CacheBudget) < cache.Patches.GetBudget())
+  const std::size_t budget = std::size_t(this->CacheBudget);
+  if (cache.ModelGeneration != in.ModelGeneration || budget < cache.Patches.GetBudget())
   {
     cache.Reset(atp::RenderPatchStride(colors)); // a smaller budget gives GPU memory back
     cache.WantedFrame.assign(model->NodeCount(), 0);
     cache.NoRoom.assign(model->NodeCount(), 0);
+    cache.Wanted.clear();
+    cache.Pending.clear();
     cache.ModelGeneration = in.ModelGeneration;
   }
-  cache.Patches.SetBudget(std::size_t(this->CacheBudget));
+  else if (budget > cache.Patches.GetBudget())
+  {
+    std::fill(cache.NoRoom.begin(), cache.NoRoom.end(), 0); // what did not fit may now
+  }
+  cache.Patches.SetBudget(budget);
   atp::RenderStatistics& stats = in.Stats;
   ++stats.Frame;
   stats.Uploads = 0;
@@ -433,11 +461,26 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     stats.UploadBytes += patch.Bytes();
   };
   // Still pinned by the last frame: arrivals may evict only what it neither drew nor held.
+  const auto wantedBy = [&](const WindowCache& c, const atp::RenderPatch& patch) {
+    return c.ModelGeneration == in.ModelGeneration && !c.WantedFrame.empty() &&
+      c.WantedFrame[patch.Node] + RecentFrames >= stats.Frame;
+  };
   in.Arrived.clear();
+  in.Arrived.swap(cache.Pending);
+  const std::size_t fresh = in.Arrived.size();
   in.Fetcher->TakeFinished(std::size_t(this->UploadBudget), in.Arrived);
-  for (const atp::RenderPatch& patch : in.Arrived)
+  for (std::size_t i = 0; i < in.Arrived.size(); ++i)
   {
-    if (cache.WantedFrame[patch.Node] + RecentFrames >= stats.Frame || !patch.Error.empty())
+    const atp::RenderPatch& patch = in.Arrived[i];
+    for (auto& [other, otherCache] : in.Windows)
+    {
+      if (i >= fresh && otherCache.get() != &cache && patch.Error.empty() &&
+        wantedBy(*otherCache, patch))
+      {
+        otherCache->Pending.push_back(patch);
+      }
+    }
+    if (wantedBy(cache, patch) || !patch.Error.empty())
     {
       store(patch, false);
     }
@@ -476,16 +519,52 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     in.Selector->Select(view, errorScale, resident, in.Cut);
   }
   stats.CutSeconds = SecondsSince(cutStart);
-  in.Wanted.clear();
+  cache.Wanted.clear();
   for (const std::uint32_t node : in.Cut.Missing)
   {
     if (!in.Corrupt[node] && !cache.NoRoom[node])
     {
-      in.Wanted.push_back(node);
+      cache.Wanted.push_back(node);
       cache.WantedFrame[node] = stats.Frame;
     }
   }
-  in.Fetcher->Request(in.Wanted);
+  if (in.Windows.size() == 1)
+  {
+    in.Fetcher->Request(cache.Wanted);
+  }
+  else
+  {
+    // This window's first, then what the others asked for last and have not been handed yet,
+    // each node once.
+    in.Requests = cache.Wanted;
+    in.Requested.assign(model->NodeCount(), 0);
+    for (const std::uint32_t node : cache.Wanted)
+    {
+      in.Requested[node] = 1;
+    }
+    for (const auto& [other, otherCache] : in.Windows)
+    {
+      for (const atp::RenderPatch& patch : otherCache->Pending)
+      {
+        in.Requested[patch.Node] = 1;
+      }
+    }
+    for (const auto& [other, otherCache] : in.Windows)
+    {
+      if (otherCache.get() != &cache && otherCache->ModelGeneration == in.ModelGeneration)
+      {
+        for (const std::uint32_t node : otherCache->Wanted)
+        {
+          if (!in.Requested[node])
+          {
+            in.Requested[node] = 1;
+            in.Requests.push_back(node);
+          }
+        }
+      }
+    }
+    in.Fetcher->Request(in.Requests);
+  }
   for (const std::uint32_t node : in.Cut.Held)
   {
     cache.Patches.Use(node);
@@ -622,7 +701,7 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   stats.DecodeSeconds = in.Fetcher->DecodeSeconds();
   stats.DecodedPatches = in.Fetcher->DecodedPatches();
   // Corrupt patches are never coming, and those without room wait for the view to change.
-  stats.Converged = in.Wanted.empty();
+  stats.Converged = cache.Wanted.empty();
   if (in.Prefetch)
   {
     in.Prefetch->Observe(view, errorScale, SecondsSince(in.Start));

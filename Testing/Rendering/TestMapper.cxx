@@ -17,7 +17,9 @@
 #include "vtkCamera.h"
 #include "vtkCommand.h"
 #include "vtkImageData.h"
+#include "vtkExecutive.h"
 #include "vtkNew.h"
+#include "vtkOutputWindow.h"
 #include "vtkPLYReader.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkPolyDataNormals.h"
@@ -215,6 +217,40 @@ TEST(Mapper, TheCacheBufferGrowsWithTheCutAndShrinksWithTheBudget)
   ExpectCrackFree(scene.Mapper->GetDrawnNodes());
 }
 
+// Patches that did not fit wait for the view to change; more room must bring them back too.
+TEST(Mapper, ARaisedBudgetRefinesAStillViewAgain)
+{
+  AtpScene scene;
+  AimCamera(FirstRenderer(scene.Window), 30, 40, 1.0);
+  EXPECT_LT(RenderUntilConverged(scene.Window, scene.Mapper), 400);
+  const std::uint64_t full = scene.Mapper->GetStatistics().Patches;
+  scene.Mapper->SetCacheBudget(100 << 10);
+  EXPECT_LT(RenderUntilConverged(scene.Window, scene.Mapper), 400);
+  EXPECT_LT(scene.Mapper->GetStatistics().Patches, full);
+  scene.Mapper->SetCacheBudget(vtkTypeInt64(512) << 20);
+  EXPECT_LT(RenderUntilConverged(scene.Window, scene.Mapper), 400);
+  EXPECT_EQ(scene.Mapper->GetStatistics().Patches, full);
+  EXPECT_LE(ImageError(FullResolution(30, 40, 1.0), atp::CaptureWindow(scene.Window)), FidelityThreshold);
+}
+
+// Its shader has no normals: the layout must not ask for them (VTK logs an error each time).
+TEST(Mapper, AnUnlitActorDrawsWithoutErrors)
+{
+  AtpScene scene;
+  scene.Actor->GetProperty()->LightingOff();
+  int errors = 0;
+  vtkNew<vtkCallbackCommand> count;
+  count->SetClientData(&errors);
+  count->SetCallback([](vtkObject*, unsigned long, void* counter, void*) { ++*static_cast<int*>(counter); });
+  vtkOutputWindow* output = vtkOutputWindow::GetInstance();
+  const unsigned long tag = output->AddObserver(vtkCommand::ErrorEvent, count);
+  AimCamera(FirstRenderer(scene.Window), 30, 40, 1.0);
+  EXPECT_LT(RenderUntilConverged(scene.Window, scene.Mapper), 400);
+  output->RemoveObserver(tag);
+  EXPECT_EQ(errors, 0);
+  EXPECT_GT(scene.Mapper->GetStatistics().Patches, 6u);
+}
+
 TEST(Mapper, CachedPatchesCostNoUploads)
 {
   AtpScene scene;
@@ -308,6 +344,11 @@ TEST(Mapper, SeveralRenderersAndWindows)
     scene.Window->Render();
     other->Render();
   }
+  // One mapper, one decoder: each window still gets the patches it asked for.
+  scene.Window->Render();
+  EXPECT_TRUE(scene.Mapper->GetConverged());
+  other->Render();
+  EXPECT_TRUE(scene.Mapper->GetConverged());
   // Each drew: the second window's picture is not empty, and the first one's has both halves.
   vtkSmartPointer<vtkImageData> first = atp::CaptureWindow(scene.Window), second = atp::CaptureWindow(other);
   auto lit = [](vtkImageData* image, int x0, int x1) {
@@ -326,6 +367,20 @@ TEST(Mapper, SeveralRenderersAndWindows)
   EXPECT_GT(lit(first, Width / 2, Width), 1000);
   EXPECT_GT(lit(second, 0, 200), 1000);
   other->Finalize();
+}
+
+// Nothing to draw is nothing to wait for: a render-until-converged loop ends.
+TEST(Mapper, NoModelIsConverged)
+{
+  AtpScene scene("/nonexistent/model.atp");
+  ErrorCounter errors;
+  scene.Reader->AddObserver(vtkCommand::ErrorEvent, errors.Command);
+  scene.Mapper->AddObserver(vtkCommand::ErrorEvent, errors.Command);
+  scene.Reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors.Command);
+  scene.Window->Render();
+  EXPECT_GT(errors.Errors, 0);
+  EXPECT_TRUE(scene.Mapper->GetConverged());
+  EXPECT_EQ(scene.Mapper->GetStatistics().Patches, 0u);
 }
 
 TEST(Mapper, BoundsComeFromTheModelBeforeAnyRendering)
