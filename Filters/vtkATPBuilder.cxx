@@ -97,17 +97,24 @@ vtkTypeBool vtkATPBuilder::ProcessRequest(
   return this->Superclass::ProcessRequest(request, inputs, outputs);
 }
 
-int vtkATPBuilder::Build()
+std::string vtkATPBuilder::MissingSetting()
 {
   if (this->GetNumberOfInputConnections(0) == 0 && !this->InputFileName)
   {
-    this->ErrorMessage = "no input: set an InputFileName or connect a vtkPolyData";
-    vtkErrorMacro(<< this->ErrorMessage);
-    return 0;
+    return "no input: set an InputFileName or connect a vtkPolyData";
   }
   if (!this->FileName || !*this->FileName)
   {
-    this->ErrorMessage = "no output: set the FileName of the model to write";
+    return "no output: set the FileName of the model to write";
+  }
+  return std::string();
+}
+
+int vtkATPBuilder::Build()
+{
+  this->ErrorMessage = this->MissingSetting();
+  if (!this->ErrorMessage.empty())
+  {
     vtkErrorMacro(<< this->ErrorMessage);
     return 0;
   }
@@ -124,6 +131,10 @@ int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, v
   const std::string scratch = this->ScratchDirectory ? this->ScratchDirectory : "";
   try
   {
+    if (const std::string missing = this->MissingSetting(); !missing.empty())
+    {
+      throw std::runtime_error(missing); // Update() called without Build()'s checks
+    }
     auto phaseStart = std::chrono::steady_clock::now(); // opening reads the input once
     double phaseCpuStart = atp::ProcessCpuSeconds();
     const std::string outputProblem = atp::OutputPathProblem(this->FileName,

@@ -179,6 +179,8 @@ private:
 
   /// The triangles of the input file or of the polydata on port 0; throws std::exception.
   std::unique_ptr<atp::TriangleSource> OpenSource(vtkInformationVector** inputs);
+  /// What a build needs and is not set (an input, an output FileName), or an empty string.
+  std::string MissingSetting();
 
   struct Results;
   std::unique_ptr<Results> Last;

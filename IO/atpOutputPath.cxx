@@ -1,6 +1,8 @@
 #include "atpOutputPath.h"
 
+#include <cerrno>
 #include <climits>
+#include <cstring>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -40,6 +42,14 @@ std::string OutputPathProblem(const std::string& path, const std::vector<std::st
   }
   const std::size_t slash = path.rfind('/');
   const std::string directory = slash == std::string::npos ? "." : path.substr(0, slash + 1);
+  struct stat folder{};
+  const int folderError =
+    ::stat(directory.c_str(), &folder) != 0 ? errno : (S_ISDIR(folder.st_mode) ? 0 : ENOTDIR);
+  if (folderError != 0)
+  {
+    // Found now, not when the finished output is renamed into place.
+    return std::string(std::strerror(folderError)) + " (its directory " + directory + ")";
+  }
   const std::size_t nameBytes = path.size() - (slash == std::string::npos ? 0 : slash + 1);
   const long limit = ::pathconf(directory.c_str(), _PC_NAME_MAX);
   if (limit > 0 && nameBytes + SideFileSuffixBytes > std::size_t(limit))

@@ -16,7 +16,7 @@ namespace atp
 constexpr std::size_t SideFileSuffixBytes = 32;
 
 /// Why `path` cannot take a new file by rename, or an empty string when it can: it must name a
-/// file (not a directory), what is there now, if anything, must be a regular file (a device,
+/// file (not a directory) in a directory that exists, what is there now, if anything, must be a regular file (a device,
 /// FIFO or socket would be replaced by the rename, /dev/null too when run as root) and none of
 /// `inputs` (a build would replace its own input), and the name must leave room for the side
 /// file's suffix within the directory's limit on name length, and the path within the system's.

@@ -337,6 +337,17 @@ TEST(Builder, ReportsErrorsWithoutThrowing)
   EXPECT_EQ(builder->Build(), 0);
   EXPECT_NE(std::string(builder->GetErrorMessage()).find("no output"), std::string::npos);
 
+  // Update() without Build()'s own checks says the same.
+  builder->Modified();
+  builder->Update();
+  EXPECT_NE(std::string(builder->GetErrorMessage()).find("no output"), std::string::npos);
+
+  // An output directory that is not there is found before the input is read.
+  builder->SetFileName("/nonexistent/dir/never.atp");
+  EXPECT_EQ(builder->Build(), 0);
+  EXPECT_EQ(std::string(builder->GetErrorMessage()),
+    "/nonexistent/dir/never.atp: No such file or directory (its directory /nonexistent/dir/)");
+
   const TemporaryPath model("never.atp");
   builder->SetFileName(model.c_str());
   EXPECT_EQ(builder->Build(), 0);
