@@ -542,16 +542,20 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     {
       in.Requested[node] = 1;
     }
+    // A window that has not drawn since the model changed holds another model's nodes.
+    const auto current = [&](const WindowCache& c) {
+      return &c != &cache && c.ModelGeneration == in.ModelGeneration;
+    };
     for (const auto& [other, otherCache] : in.Windows)
     {
-      for (const atp::RenderPatch& patch : otherCache->Pending)
+      for (std::size_t i = 0; current(*otherCache) && i < otherCache->Pending.size(); ++i)
       {
-        in.Requested[patch.Node] = 1;
+        in.Requested[otherCache->Pending[i].Node] = 1;
       }
     }
     for (const auto& [other, otherCache] : in.Windows)
     {
-      if (otherCache.get() != &cache && otherCache->ModelGeneration == in.ModelGeneration)
+      if (current(*otherCache))
       {
         for (const std::uint32_t node : otherCache->Wanted)
         {

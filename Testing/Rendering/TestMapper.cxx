@@ -9,6 +9,7 @@
 #include "atpRenderStatistics.h"
 #include "atpTetra.h"
 #include "atpWindowImage.h"
+#include "vtkATPBuilder.h"
 #include "vtkATPMapper.h"
 #include "vtkATPReader.h"
 
@@ -367,6 +368,34 @@ TEST(Mapper, SeveralRenderersAndWindows)
   EXPECT_GT(lit(first, Width / 2, Width), 1000);
   EXPECT_GT(lit(second, 0, 200), 1000);
   other->Finalize();
+}
+
+// A window that has not drawn since the model changed holds the old model's nodes: the other
+// window's frames must not read them as the new model's (here: a model of far fewer nodes).
+TEST(Mapper, AModelChangedUnderTwoWindows)
+{
+  const std::string coarse = TempPath("coarse-torus.atp");
+  vtkNew<vtkATPBuilder> builder;
+  builder->SetInputFileName(ATP_DATA_DIR "/bumpy-torus.ply");
+  builder->SetFileName(coarse.c_str());
+  ASSERT_EQ(builder->Build(), 1);
+  AtpScene scene;
+  auto other = MakeWindow(200, 150);
+  FirstRenderer(other)->AddActor(scene.Actor);
+  AimCamera(FirstRenderer(scene.Window), 30, 40, 1.0);
+  AimCamera(FirstRenderer(other), 90, 0, 1.0);
+  // Both still loading, the second window last handed patches it has not drawn yet.
+  for (int frame = 0; frame < 3; ++frame)
+  {
+    other->Render();
+    scene.Window->Render();
+  }
+  scene.Reader->SetFileName(coarse.c_str());
+  EXPECT_LT(RenderUntilConverged(scene.Window, scene.Mapper), 400);
+  EXPECT_LT(RenderUntilConverged(other, scene.Mapper), 400);
+  EXPECT_LT(RenderUntilConverged(scene.Window, scene.Mapper), 400);
+  other->Finalize();
+  ::unlink(coarse.c_str());
 }
 
 // Nothing to draw is nothing to wait for: a render-until-converged loop ends.
