@@ -704,7 +704,8 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   stats.CutNodes = in.Cut.Visited;
   stats.DecodeSeconds = in.Fetcher->DecodeSeconds();
   stats.DecodedPatches = in.Fetcher->DecodedPatches();
-  // Corrupt patches are never coming, and those without room wait for the view to change.
+  // Corrupt patches are never coming, and those without room wait for the view to change or
+  // the budget to grow.
   stats.Converged = cache.Wanted.empty();
   if (in.Prefetch)
   {
