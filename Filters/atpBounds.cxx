@@ -160,6 +160,22 @@ Sphere LoadSphere(const float in[4])
   return s;
 }
 
+std::array<double, 3> FaceCross(const PatchMesh& patch, std::size_t t)
+{
+  const float* p[3];
+  for (int c = 0; c < 3; ++c)
+  {
+    p[c] = &patch.Positions[3 * std::size_t(patch.Indices[3 * t + std::size_t(c)])];
+  }
+  double e[3], f[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    e[a] = double(p[1][a]) - p[0][a];
+    f[a] = double(p[2][a]) - p[0][a];
+  }
+  return { { e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0] } };
+}
+
 NormalCone FaceNormalCone(const PatchMesh& patch)
 {
   std::vector<std::array<double, 4>> normals;
@@ -167,19 +183,8 @@ NormalCone FaceNormalCone(const PatchMesh& patch)
   double sum[3] = { 0, 0, 0 };
   for (std::size_t t = 0; t < patch.TriangleCount(); ++t)
   {
-    const float* p[3];
-    for (int c = 0; c < 3; ++c)
-    {
-      p[c] = &patch.Positions[3 * std::size_t(patch.Indices[3 * t + c])];
-    }
-    double e[3], f[3];
-    for (int a = 0; a < 3; ++a)
-    {
-      e[a] = double(p[1][a]) - p[0][a];
-      f[a] = double(p[2][a]) - p[0][a];
-    }
-    double n[3] = { e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0] };
-    const double area2 = Length(n);
+    std::array<double, 3> n = FaceCross(patch, t);
+    const double area2 = Length(n.data());
     if (area2 == 0)
     {
       continue;

@@ -6,6 +6,7 @@
 #include "atpPatchMesh.h"
 #include "vtkATPFiltersModule.h"
 
+#include <array>
 #include <vector>
 
 namespace atp
@@ -40,6 +41,9 @@ struct NormalCone
   bool Empty = true;   ///< holds no normal yet
 };
 
+/// Triangle t's edges from its first corner crossed, in double from the float positions: its
+/// normal times twice its area; zero for a degenerate face.
+VTKATPFILTERS_EXPORT std::array<double, 3> FaceCross(const PatchMesh& patch, std::size_t t);
 /// The cone of the face normals of a patch (degenerate faces ignored).
 VTKATPFILTERS_EXPORT NormalCone FaceNormalCone(const PatchMesh& patch);
 /// A cone holding every non-empty cone given.

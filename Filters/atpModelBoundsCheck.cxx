@@ -1,5 +1,7 @@
 #include "atpModelBoundsCheck.h"
 
+#include "atpBounds.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -52,6 +54,11 @@ std::vector<std::string> PatchProblems(
   const ModelHeader& header, std::size_t i, const ModelNode& node, const PatchMesh& patch)
 {
   std::vector<std::string> problems;
+  if (node.TriangleCount != patch.TriangleCount())
+  {
+    problems.push_back(Problem(i, "the patch holds ", patch.TriangleCount(), " triangles, the node says ",
+      node.TriangleCount));
+  }
   if (node.VertexCount != patch.VertexCount())
   {
     problems.push_back(Problem(i, "the patch holds ", patch.VertexCount(), " vertices, the node says ",
@@ -84,19 +91,9 @@ std::vector<std::string> PatchProblems(
     const double halfAngle = std::acos(std::min(1.0, double(node.ConeCos)));
     for (std::size_t t = 0; t < patch.TriangleCount(); ++t)
     {
-      const float* p[3];
-      for (int c = 0; c < 3; ++c)
-      {
-        p[c] = &patch.Positions[3 * std::size_t(patch.Indices[3 * t + std::size_t(c)])];
-      }
-      double e[3], f[3];
-      for (int a = 0; a < 3; ++a)
-      {
-        e[a] = double(p[1][a]) - p[0][a];
-        f[a] = double(p[2][a]) - p[0][a];
-      }
-      const double n[3] = { e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0] };
-      if (Length(n) == 0)
+      // The same normal FaceNormalCone gave the builder.
+      const std::array<double, 3> n = FaceCross(patch, t);
+      if (Length(n.data()) == 0)
       {
         continue;
       }

@@ -17,8 +17,8 @@
 namespace atp
 {
 
-/// Node `i` of a model with `header` against its decoded patch: the node's vertex count is the
-/// patch's, the patch has colors as the header says, the node's sphere holds every vertex, its
+/// Node `i` of a model with `header` against its decoded patch: the node's triangle and vertex
+/// counts are the patch's, the patch has colors as the header says, the node's sphere holds every vertex, its
 /// cone (a unit axis, unless it holds every direction) every face normal (degenerate faces
 /// aside) and its saturated sphere its sphere. Each problem reads "node I: what is wrong"; at
 /// most one of each kind.

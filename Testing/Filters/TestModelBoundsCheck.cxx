@@ -72,6 +72,11 @@ TEST(ModelBoundsCheck, BoundsThatMissTheirPatchAreReported)
   const std::string node = "node " + std::to_string(i) + ": ";
 
   atp::ModelNode bad = good;
+  bad.TriangleCount -= 1;
+  ExpectOneProblem(atp::PatchProblems(model.Header(), i, bad, patch),
+    node + "the patch holds " + std::to_string(good.TriangleCount) + " triangles, the node says");
+
+  bad = good;
   bad.VertexCount -= 1;
   ExpectOneProblem(atp::PatchProblems(model.Header(), i, bad, patch), node + "the patch holds ");
 
