@@ -10,6 +10,15 @@
 namespace atp
 {
 
+std::optional<double> UsableTolerancePixels(double requested)
+{
+  if (std::isnan(requested))
+  {
+    return std::nullopt;
+  }
+  return std::clamp(requested, 1e-3, 1e6);
+}
+
 ViewPoint ViewFromCamera(vtkCamera* camera, int width, int height, vtkMatrix4x4* modelToWorld,
   double tolerancePixels, bool backfaceCulling)
 {

@@ -6,6 +6,8 @@
 #include "atpCut.h"
 #include "vtkATPFiltersModule.h"
 
+#include <optional>
+
 class vtkCamera;
 class vtkMatrix4x4;
 
@@ -17,6 +19,11 @@ namespace atp
 /// are set (near and far are left out: clipping ranges follow what is drawn, not the reverse).
 VTKATPFILTERS_EXPORT ViewPoint ViewFromCamera(vtkCamera* camera, int width, int height,
   vtkMatrix4x4* modelToWorld, double tolerancePixels, bool backfaceCulling);
+
+/// The tolerance the VTK classes use when `requested` pixels are asked for: clamped to
+/// [1e-3, 1e6] pixels (finer asks for more than the finest level, coarser for less than the
+/// roots); no value for NaN, which no clamp can place (every comparison of the cut would fail).
+VTKATPFILTERS_EXPORT std::optional<double> UsableTolerancePixels(double requested);
 
 } // namespace atp
 

@@ -18,6 +18,36 @@
 vtkStandardNewMacro(vtkATPExtractCut);
 vtkCxxSetObjectMacro(vtkATPExtractCut, Camera, vtkCamera);
 
+void vtkATPExtractCut::SetViewportSize(int width, int height)
+{
+  if (width < 1 || height < 1)
+  {
+    vtkErrorMacro("ViewportSize " << width << " x " << height << " refused: a viewport has at least one pixel each way");
+    return;
+  }
+  if (width != this->ViewportSize[0] || height != this->ViewportSize[1])
+  {
+    this->ViewportSize[0] = width;
+    this->ViewportSize[1] = height;
+    this->Modified();
+  }
+}
+
+void vtkATPExtractCut::SetTolerancePixels(double tolerance)
+{
+  const std::optional<double> usable = atp::UsableTolerancePixels(tolerance);
+  if (!usable)
+  {
+    vtkErrorMacro("TolerancePixels NaN refused: it stays " << this->TolerancePixels);
+    return;
+  }
+  if (*usable != this->TolerancePixels)
+  {
+    this->TolerancePixels = *usable;
+    this->Modified();
+  }
+}
+
 vtkATPExtractCut::vtkATPExtractCut() = default;
 
 vtkATPExtractCut::~vtkATPExtractCut()

@@ -37,12 +37,15 @@ public:
   void SetCamera(vtkCamera* camera);
   vtkGetObjectMacro(Camera, vtkCamera);
 
-  /// Viewport in pixels (default 800 x 600).
-  vtkSetVector2Macro(ViewportSize, int);
+  /// Viewport in pixels (default 800 x 600). A size under 1 pixel is refused with an error and
+  /// leaves the viewport as it was.
+  void SetViewportSize(int width, int height);
+  void SetViewportSize(const int size[2]) { this->SetViewportSize(size[0], size[1]); }
   vtkGetVector2Macro(ViewportSize, int);
 
-  /// Largest screen-space error in pixels (default 1).
-  vtkSetClampMacro(TolerancePixels, double, 1e-3, 1e6);
+  /// Largest screen-space error in pixels (default 1), clamped to [1e-3, 1e6]; NaN is refused
+  /// with an error and leaves the tolerance as it was.
+  void SetTolerancePixels(double tolerance);
   vtkGetMacro(TolerancePixels, double);
 
   /// Drop patches facing away from the camera (default off: keeps open surfaces whole).

@@ -275,6 +275,21 @@ vtkATPMapper::vtkATPMapper()
 // objects still alive here are deleted by their own destructors, as VTK's mappers do.
 vtkATPMapper::~vtkATPMapper() = default;
 
+void vtkATPMapper::SetTolerancePixels(double tolerance)
+{
+  const std::optional<double> usable = atp::UsableTolerancePixels(tolerance);
+  if (!usable)
+  {
+    vtkErrorMacro("TolerancePixels NaN refused: it stays " << this->TolerancePixels);
+    return;
+  }
+  if (*usable != this->TolerancePixels)
+  {
+    this->TolerancePixels = *usable;
+    this->Modified();
+  }
+}
+
 void vtkATPMapper::SetInputData(vtkATPModel* model)
 {
   this->SetInputDataInternal(0, model);

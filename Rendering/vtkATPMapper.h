@@ -54,8 +54,9 @@ public:
   void SetInputData(vtkATPModel* model);
   vtkATPModel* GetInput();
 
-  /// Largest screen-space error in pixels (default 1).
-  vtkSetClampMacro(TolerancePixels, double, 1e-3, 1e6);
+  /// Largest screen-space error in pixels (default 1), clamped to [1e-3, 1e6]; NaN is refused
+  /// with an error and leaves the tolerance as it was.
+  void SetTolerancePixels(double tolerance);
   vtkGetMacro(TolerancePixels, double);
 
   /// GPU memory for patches, in bytes (default 512 MiB). What one frame draws is never

@@ -24,6 +24,7 @@
 
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <set>
 #include <unistd.h>
 
@@ -148,6 +149,29 @@ TEST(ExtractCut, CameraCutsWithPatchIds)
   camera->SetFocalPoint(0, 0, 60);
   extract->Update();
   EXPECT_EQ(extract->GetOutput()->GetNumberOfPolys(), 0);
+}
+
+TEST(ExtractCut, RefusesNaNToleranceAndEmptyViewports)
+{
+  vtkNew<vtkATPExtractCut> extract;
+  ErrorCounter errors;
+  extract->AddObserver(vtkCommand::ErrorEvent, errors.Command);
+  extract->SetTolerancePixels(4);
+  extract->SetTolerancePixels(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_EQ(errors.Errors, 1);
+  EXPECT_EQ(extract->GetTolerancePixels(), 4);
+  extract->SetTolerancePixels(1e9);
+  EXPECT_EQ(extract->GetTolerancePixels(), 1e6);
+  extract->SetTolerancePixels(0);
+  EXPECT_EQ(extract->GetTolerancePixels(), 1e-3);
+
+  extract->SetViewportSize(640, 480);
+  extract->SetViewportSize(-640, 480);
+  extract->SetViewportSize(640, 0);
+  EXPECT_EQ(errors.Errors, 3);
+  EXPECT_EQ(extract->GetViewportSize()[0], 640);
+  EXPECT_EQ(extract->GetViewportSize()[1], 480);
+  EXPECT_EQ(errors.Errors, 3);
 }
 
 TEST(ExtractCut, CorruptPatchIsAnError)

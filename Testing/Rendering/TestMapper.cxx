@@ -33,6 +33,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <unistd.h>
 
@@ -410,6 +411,21 @@ TEST(Mapper, NoModelIsConverged)
   EXPECT_GT(errors.Errors, 0);
   EXPECT_TRUE(scene.Mapper->GetConverged());
   EXPECT_EQ(scene.Mapper->GetStatistics().Patches, 0u);
+}
+
+// NaN would fail every comparison of the cut; a tolerance out of range is clamped.
+TEST(Mapper, RefusesANaNTolerance)
+{
+  vtkNew<vtkATPMapper> mapper;
+  ErrorCounter errors;
+  mapper->AddObserver(vtkCommand::ErrorEvent, errors.Command);
+  mapper->SetTolerancePixels(2);
+  mapper->SetTolerancePixels(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_EQ(errors.Errors, 1);
+  EXPECT_EQ(mapper->GetTolerancePixels(), 2);
+  mapper->SetTolerancePixels(-1);
+  EXPECT_EQ(mapper->GetTolerancePixels(), 1e-3);
+  EXPECT_EQ(errors.Errors, 1);
 }
 
 TEST(Mapper, BoundsComeFromTheModelBeforeAnyRendering)
