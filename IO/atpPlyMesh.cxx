@@ -388,13 +388,11 @@ std::size_t PropertyIndex(
   return element.Properties.size();
 }
 
-/// A color component as a byte: reals are fractions of 1, ushort values fractions of 65535,
-/// other integers fractions of 255.
+/// A color component as a byte.
 std::uint8_t PlyColorByte(double value, PlyType type)
 {
-  return ColorByte(type == PlyType::UInt16
-      ? value / 65535
-      : (IsPlyIntegerType(type) ? value / 255 : value));
+  return ColorByte(value, type == PlyType::UInt16 ? ColorStorage::UInt16
+      : (IsPlyIntegerType(type) ? ColorStorage::OtherInteger : ColorStorage::Real));
 }
 
 bool HasLists(const PlyElement& element)

@@ -18,23 +18,51 @@ namespace atp
 {
 namespace
 {
-/// The point colors (see OpenPolyDataTriangleSource); nullptr when there are none.
-vtkAOSDataArrayTemplate<unsigned char>* FindColors(vtkPolyData* mesh)
+/// The point colors (see OpenPolyDataTriangleSource) as unsigned chars: `array` itself when it
+/// holds them, else a converted copy; null when there are none.
+vtkSmartPointer<vtkAOSDataArrayTemplate<unsigned char>> FindColors(vtkPolyData* mesh, const std::string& name)
 {
   vtkPointData* data = mesh ? mesh->GetPointData() : nullptr;
   if (!data)
   {
     return nullptr;
   }
-  for (vtkDataArray* array :
-    { data->GetScalars(), data->GetArray("RGB"), data->GetArray("RGBA"), data->GetArray("Colors") })
+  auto* scalars = vtkArrayDownCast<vtkAOSDataArrayTemplate<unsigned char>>(data->GetScalars());
+  if (scalars && (scalars->GetNumberOfComponents() == 3 || scalars->GetNumberOfComponents() == 4))
   {
-    auto* colors = vtkArrayDownCast<vtkAOSDataArrayTemplate<unsigned char>>(array);
-    if (colors && (colors->GetNumberOfComponents() == 3 || colors->GetNumberOfComponents() == 4) &&
-      colors->GetNumberOfTuples() == mesh->GetNumberOfPoints())
+    return scalars;
+  }
+  for (const char* colorName : { "RGB", "RGBA", "Colors" })
+  {
+    vtkDataArray* array = data->GetArray(colorName);
+    if (!array)
     {
-      return colors;
+      continue;
     }
+    const int components = array->GetNumberOfComponents();
+    if (components != 3 && components != 4)
+    {
+      throw InputError(name + ": the point array " + colorName + " has " + std::to_string(components) +
+        " components; colors have 3 (RGB) or 4 (RGBA)");
+    }
+    if (auto* bytes = vtkArrayDownCast<vtkAOSDataArrayTemplate<unsigned char>>(array))
+    {
+      return bytes;
+    }
+    auto converted = vtkSmartPointer<vtkAOSDataArrayTemplate<unsigned char>>::New();
+    converted->SetNumberOfComponents(components);
+    converted->SetNumberOfTuples(array->GetNumberOfTuples());
+    const int type = array->GetDataType();
+    const ColorStorage storage = type == VTK_FLOAT || type == VTK_DOUBLE ? ColorStorage::Real
+      : (type == VTK_UNSIGNED_SHORT ? ColorStorage::UInt16 : ColorStorage::OtherInteger);
+    for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
+    {
+      for (int k = 0; k < components; ++k)
+      {
+        converted->SetTypedComponent(i, k, ColorByte(array->GetComponent(i, k), storage));
+      }
+    }
+    return converted;
   }
   return nullptr;
 }
@@ -63,7 +91,7 @@ public:
         this->Positions[std::size_t(3 * i + k)] = ToFloatCoordinate(p[k]);
       }
     }
-    this->Colors = FindColors(mesh);
+    this->Colors = FindColors(mesh, name);
     this->Rewind();
   }
 
@@ -151,7 +179,7 @@ private:
   std::string Name;
   vtkSmartPointer<vtkPolyData> Mesh;
   std::vector<float> Positions;
-  vtkAOSDataArrayTemplate<unsigned char>* Colors = nullptr; ///< held by Mesh
+  vtkSmartPointer<vtkAOSDataArrayTemplate<unsigned char>> Colors; ///< Mesh's own, or converted
   vtkSmartPointer<vtkCellArrayIterator> Polys, Strips;
   std::vector<std::uint32_t> Indices, Sizes;
 };

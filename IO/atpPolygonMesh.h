@@ -81,6 +81,21 @@ inline std::uint8_t ColorByte(double fraction)
   return static_cast<std::uint8_t>(fraction > 0 ? std::min(fraction, 1.0) * 255 + 0.5 : 0);
 }
 
+/// How a stored color component reads as a fraction of 1 (PLY's and vtkPolyData's arrays alike).
+enum class ColorStorage
+{
+  Real,         ///< already a fraction of 1
+  UInt16,       ///< a fraction of 65535
+  OtherInteger, ///< a fraction of 255
+};
+
+/// A stored color component as a byte.
+inline std::uint8_t ColorByte(double value, ColorStorage storage)
+{
+  return ColorByte(storage == ColorStorage::Real ? value
+      : value / (storage == ColorStorage::UInt16 ? 65535 : 255));
+}
+
 /// "nan", "inf" or "-inf" for the first non-finite coordinate of p; nullptr when all are finite.
 inline const char* FirstNonFinite(const float p[3])
 {

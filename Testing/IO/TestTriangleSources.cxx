@@ -5,11 +5,14 @@
 #include "atpTriangleSource.h"
 
 #include <vtkCellArray.h>
+#include <vtkDataArray.h>
 #include <vtkFloatArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkType.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkXMLPolyDataWriter.h>
 
@@ -850,56 +853,94 @@ TEST_F(TriangleSources, VtpPolygonsAndStrips)
   EXPECT_EQ(result.Stats.TrianglesEmitted, 6u);
 }
 
+/// `mesh` as a .vtp at `path`, with `colors` (its own name set) added to the point data, as the
+/// active scalars or beside a float array that is.
+void WriteVtp(const Mesh& mesh, vtkDataArray* colors, bool colorsAreScalars, const std::string& path)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkFloatArray> other;
+  other->SetName("temperature");
+  for (const auto& p : mesh.Points)
+  {
+    points->InsertNextPoint(p.data());
+    other->InsertNextValue(1);
+  }
+  vtkNew<vtkCellArray> polys;
+  for (const auto& face : mesh.Faces)
+  {
+    const vtkIdType ids[3] = { face[0], face[1], face[2] };
+    polys->InsertNextCell(3, ids);
+  }
+  vtkNew<vtkPolyData> polyData;
+  polyData->SetPoints(points);
+  polyData->SetPolys(polys);
+  if (colorsAreScalars)
+  {
+    polyData->GetPointData()->SetScalars(colors);
+  }
+  else
+  {
+    polyData->GetPointData()->AddArray(colors);
+    polyData->GetPointData()->SetScalars(other);
+  }
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetInputData(polyData);
+  writer->SetFileName(path.c_str());
+  ASSERT_EQ(writer->Write(), 1);
+}
+
 TEST_F(TriangleSources, VtpPointColors)
 {
-  // Unsigned char colors: RGB in an array of that name (the active scalars being something
-  // else), or RGBA as the active scalars.
-  for (bool alpha : { false, true })
+  // Unsigned char colors as the active scalars (any name), or in an array named RGB, RGBA or
+  // Colors of any type, read as PLY colors are: reals fractions of 1, unsigned shorts of 65535.
+  struct Case
   {
-    const Mesh mesh = Colored(Grid(3, 2, false), alpha);
-    vtkNew<vtkPoints> points;
-    vtkNew<vtkUnsignedCharArray> colors;
-    colors->SetNumberOfComponents(alpha ? 4 : 3);
-    vtkNew<vtkFloatArray> other;
-    for (std::size_t i = 0; i < mesh.Points.size(); ++i)
+    const char* Name;
+    int Type;
+    double Full; ///< the stored value of a full component
+    bool Alpha, Scalars;
+  };
+  for (const Case& c : { Case{ "paint", VTK_UNSIGNED_CHAR, 255, true, true },
+         Case{ "RGB", VTK_UNSIGNED_CHAR, 255, false, false },
+         Case{ "RGBA", VTK_FLOAT, 1, true, false }, Case{ "Colors", VTK_DOUBLE, 1, false, false },
+         Case{ "RGB", VTK_UNSIGNED_SHORT, 65535, false, false },
+         Case{ "Colors", VTK_INT, 255, true, false } })
+  {
+    SCOPED_TRACE(std::string(c.Name) + " " + vtkImageScalarTypeNameMacro(c.Type));
+    const Mesh mesh = Colored(Grid(3, 2, false), c.Alpha);
+    vtkSmartPointer<vtkDataArray> colors = vtk::TakeSmartPointer(vtkDataArray::CreateDataArray(c.Type));
+    colors->SetName(c.Name);
+    colors->SetNumberOfComponents(c.Alpha ? 4 : 3);
+    for (const auto& color : mesh.Colors)
     {
-      points->InsertNextPoint(mesh.Points[i].data());
-      for (int k = 0; k < colors->GetNumberOfComponents(); ++k)
+      double tuple[4];
+      for (int k = 0; k < 4; ++k)
       {
-        colors->InsertNextValue(mesh.Colors[i][std::size_t(k)]);
+        tuple[k] = color[std::size_t(k)] / 255.0 * c.Full;
       }
-      other->InsertNextValue(1);
+      colors->InsertNextTuple(tuple);
     }
-    vtkNew<vtkCellArray> polys;
-    for (const auto& face : mesh.Faces)
-    {
-      const vtkIdType ids[3] = { face[0], face[1], face[2] };
-      polys->InsertNextCell(3, ids);
-    }
-    vtkNew<vtkPolyData> polyData;
-    polyData->SetPoints(points);
-    polyData->SetPolys(polys);
-    if (alpha)
-    {
-      colors->SetName("paint");
-      polyData->GetPointData()->SetScalars(colors);
-    }
-    else
-    {
-      colors->SetName("RGB");
-      polyData->GetPointData()->AddArray(colors);
-      other->SetName("temperature");
-      polyData->GetPointData()->SetScalars(other);
-    }
-    vtkNew<vtkXMLPolyDataWriter> writer;
-    writer->SetInputData(polyData);
-    writer->SetFileName(this->Path("colors.vtp").c_str());
-    ASSERT_EQ(writer->Write(), 1);
-    SCOPED_TRACE(alpha ? "RGBA scalars" : "RGB array");
+    WriteVtp(mesh, colors, c.Scalars, this->Path("colors.vtp"));
     const Result result = this->Read(this->Path("colors.vtp"));
     ExpectMesh(result, mesh, 10);
     ExpectColors(result, mesh);
   }
+}
+
+TEST_F(TriangleSources, VtpColorsOfTwoComponentsAreRefused)
+{
+  const Mesh mesh = Grid(3, 2, false);
+  vtkNew<vtkUnsignedCharArray> colors;
+  colors->SetName("RGB");
+  colors->SetNumberOfComponents(2);
+  colors->SetNumberOfTuples(vtkIdType(mesh.Points.size()));
+  colors->Fill(7);
+  WriteVtp(mesh, colors, false, this->Path("two.vtp"));
+  this->ExpectError(this->Path("two.vtp"), "the point array RGB has 2 components; colors have 3 (RGB) or 4 (RGBA)");
+  // Active scalars of two unsigned chars under another name are data, not colors.
+  colors->SetName("uv");
+  WriteVtp(mesh, colors, true, this->Path("two-scalars.vtp"));
+  ExpectColors(this->Read(this->Path("two-scalars.vtp")), mesh);
 }
 
 TEST_F(TriangleSources, WithoutColorsCornersAreOpaqueWhite)
