@@ -3,6 +3,7 @@
 #include "vtkCamera.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
+#include "vtkObject.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,13 +11,19 @@
 namespace atp
 {
 
-std::optional<double> UsableTolerancePixels(double requested)
+void SetTolerancePixels(vtkObject* owner, double& tolerance, double requested)
 {
   if (std::isnan(requested))
   {
-    return std::nullopt;
+    vtkErrorWithObjectMacro(owner, "TolerancePixels NaN refused: it stays " << tolerance);
+    return;
   }
-  return std::clamp(requested, 1e-3, 1e6);
+  const double usable = std::clamp(requested, 1e-3, 1e6);
+  if (usable != tolerance)
+  {
+    tolerance = usable;
+    owner->Modified();
+  }
 }
 
 ViewPoint ViewFromCamera(vtkCamera* camera, int width, int height, vtkMatrix4x4* modelToWorld,

@@ -6,10 +6,10 @@
 #include "atpCut.h"
 #include "vtkATPFiltersModule.h"
 
-#include <optional>
 
 class vtkCamera;
 class vtkMatrix4x4;
+class vtkObject;
 
 namespace atp
 {
@@ -20,10 +20,12 @@ namespace atp
 VTKATPFILTERS_EXPORT ViewPoint ViewFromCamera(vtkCamera* camera, int width, int height,
   vtkMatrix4x4* modelToWorld, double tolerancePixels, bool backfaceCulling);
 
-/// The tolerance the VTK classes use when `requested` pixels are asked for: clamped to
-/// [1e-3, 1e6] pixels (finer asks for more than the finest level, coarser for less than the
-/// roots); no value for NaN, which no clamp can place (every comparison of the cut would fail).
-VTKATPFILTERS_EXPORT std::optional<double> UsableTolerancePixels(double requested);
+/// The TolerancePixels setter of the VTK classes that cut (`owner`, whose member is `tolerance`):
+/// `requested` clamped to [1e-3, 1e6] pixels (finer asks for more than the finest level, coarser
+/// for less than the roots), `owner` Modified when that changes the value. NaN, which no clamp
+/// can place (every comparison of the cut would fail), is reported as `owner`'s error and
+/// leaves the tolerance as it was.
+VTKATPFILTERS_EXPORT void SetTolerancePixels(vtkObject* owner, double& tolerance, double requested);
 
 } // namespace atp
 

@@ -35,17 +35,7 @@ void vtkATPExtractCut::SetViewportSize(int width, int height)
 
 void vtkATPExtractCut::SetTolerancePixels(double tolerance)
 {
-  const std::optional<double> usable = atp::UsableTolerancePixels(tolerance);
-  if (!usable)
-  {
-    vtkErrorMacro("TolerancePixels NaN refused: it stays " << this->TolerancePixels);
-    return;
-  }
-  if (*usable != this->TolerancePixels)
-  {
-    this->TolerancePixels = *usable;
-    this->Modified();
-  }
+  atp::SetTolerancePixels(this, this->TolerancePixels, tolerance);
 }
 
 vtkATPExtractCut::vtkATPExtractCut() = default;

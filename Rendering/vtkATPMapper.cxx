@@ -277,17 +277,7 @@ vtkATPMapper::~vtkATPMapper() = default;
 
 void vtkATPMapper::SetTolerancePixels(double tolerance)
 {
-  const std::optional<double> usable = atp::UsableTolerancePixels(tolerance);
-  if (!usable)
-  {
-    vtkErrorMacro("TolerancePixels NaN refused: it stays " << this->TolerancePixels);
-    return;
-  }
-  if (*usable != this->TolerancePixels)
-  {
-    this->TolerancePixels = *usable;
-    this->Modified();
-  }
+  atp::SetTolerancePixels(this, this->TolerancePixels, tolerance);
 }
 
 void vtkATPMapper::SetInputData(vtkATPModel* model)
