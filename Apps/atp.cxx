@@ -219,12 +219,27 @@ int Build(int argc, char** argv, atp::MpiJobRunner* workers)
   }
   const atp::InputStats& in = builder->GetInputStats();
   const atp::PartitionStats& p = builder->GetPartitionStats();
-  std::printf("input: %s vertices, %s faces, %s triangles (%llu degenerate dropped, %llu "
-              "boundary edges)\n",
+  const atp::ConstructionStats& c = builder->GetConstructionStats();
+  std::string shared;
+  if (in.BoundaryUnchecked)
+  {
+    shared = "; too many edges open by vertex index to check by position: none kept as boundary";
+  }
+  else if (in.SharedOpenEdges > 0)
+  {
+    shared = "; " + std::to_string(in.SharedOpenEdges) +
+      " edges open by vertex index are shared by position (unwelded vertices or edges of 3+ "
+      "triangles): locked, not boundary";
+  }
+  const std::string repeated = c.RepeatedTrianglesDropped == 0
+    ? std::string()
+    : ", " + std::to_string(c.RepeatedTrianglesDropped) + " repeated dropped";
+  std::printf("input: %s vertices, %s faces, %s triangles (%llu degenerate dropped%s, %llu "
+              "boundary edges%s)\n",
     FormatCount(double(in.VerticesRead)).c_str(), FormatCount(double(in.FacesRead)).c_str(),
-    FormatCount(double(in.TrianglesEmitted)).c_str(),
-    static_cast<unsigned long long>(in.DegenerateDropped),
-    static_cast<unsigned long long>(in.BoundaryEdges));
+    FormatCount(double(in.TrianglesEmitted - c.RepeatedTrianglesDropped)).c_str(),
+    static_cast<unsigned long long>(in.DegenerateDropped), repeated.c_str(),
+    static_cast<unsigned long long>(in.BoundaryEdges), shared.c_str());
   const double partitionSeconds = builder->GetPartitionSeconds();
   std::printf("partition: %llu leaves (%llu holding triangles, largest %llu), depth %d, %llu "
               "tetrahedra split, %llu overfull at the deepest level, %.2fs (%s triangles/s)\n",
@@ -236,7 +251,6 @@ int Build(int argc, char** argv, atp::MpiJobRunner* workers)
   std::printf("buckets: %.1f MiB written to scratch, %.1f MiB read back, scratch peak %.1f MiB\n",
     double(p.Buckets.BytesWritten) / (1 << 20), double(p.Buckets.BytesRead) / (1 << 20),
     double(p.Buckets.PeakScratchBytes) / (1 << 20));
-  const atp::ConstructionStats& c = builder->GetConstructionStats();
   std::printf("simplify: %llu diamonds, %s collapses, %s closed pieces removed, %llu diamonds over quota "
               "(%s triangles over), %llu simplified patches over the budget, coarsest error %.3g, %.2fs\n",
     static_cast<unsigned long long>(c.Diamonds), FormatCount(double(c.Collapses)).c_str(),

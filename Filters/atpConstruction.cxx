@@ -309,6 +309,7 @@ private:
       [&](std::size_t i, PatchJobResult& made) {
         Store(leaves[i], made.Patches[0], haveParents);
         Result(leaves[i]).Cone = made.Patches[0].Cone;
+        Stats.RepeatedTrianglesDropped += made.RepeatedTrianglesDropped;
         Stats.Cpu.LeafWeld += made.Cpu.Prepare;
         Stats.Cpu.LeafEncode += made.Cpu.Encode;
         ReportProgress(1);
@@ -521,7 +522,7 @@ private:
     }
     header.LatticeScale = Partition.Frame().Scale();
     header.QuantizationStep = Context.Grid.Step;
-    header.InputTriangles = Input.TrianglesEmitted;
+    header.InputTriangles = Input.TrianglesEmitted - Stats.RepeatedTrianglesDropped;
     header.InputBoundaryEdges = Input.BoundaryEdges;
     header.StoredTriangles = Stats.StoredTriangles;
     header.LeafCapacity = Partition.Options().LeafCapacity;

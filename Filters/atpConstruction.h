@@ -62,6 +62,9 @@ struct ConstructionStats
   std::uint64_t TrianglesOverQuotas = 0; ///< above the diamonds' quotas, summed
   /// Closed pieces (an isosurface's specks) removed whole where no collapse was left (Simplify).
   std::uint64_t PiecesRemoved = 0;
+  /// Copies of an input triangle dropped from its leaf (WeldSoup); the model's InputTriangles
+  /// leaves them out.
+  std::uint64_t RepeatedTrianglesDropped = 0;
   /// Simplified patches above the patch budget, the renderer's unit of work (leaves hold up to
   /// the leaf capacity instead).
   std::uint64_t SimplifiedPatchesOverBudget = 0;

@@ -4,11 +4,13 @@
 #ifndef atpPartitioner_h
 #define atpPartitioner_h
 
+#include "atpBoundaryEdgeCheck.h"
 #include "atpBucketStore.h"
 #include "atpTetraForest.h"
 #include "atpTriangleSource.h"
 #include "vtkATPFiltersModule.h"
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -59,12 +61,20 @@ public:
   {
     return Buckets.Count(std::uint32_t(leaf));
   }
-  /// Appends the triangles of `leaf` to `out`. Once inserting has stopped, safe from several
-  /// threads at once, and beside ReleaseLeaf of other leaves.
+  /// Appends the triangles of `leaf` to `out`, their boundary bits checked by position when a
+  /// check is set. Once inserting has stopped, safe from several threads at once, and beside
+  /// ReleaseLeaf of other leaves.
   void ReadLeaf(TetraForest::NodeIndex leaf, std::vector<SoupTriangle>& out) const
   {
+    const std::size_t first = out.size();
     Buckets.Read(std::uint32_t(leaf), out);
+    if (BoundaryCheck)
+    {
+      BoundaryCheck->Apply(out.data() + first, out.size() - first);
+    }
   }
+  /// The source's check of the boundary bits (TriangleSource::BoundaryCheck), once it is read.
+  void SetBoundaryCheck(std::shared_ptr<const BoundaryEdgeCheck> check) { BoundaryCheck = std::move(check); }
   /// Once every triangle is in: what only inserting needs goes back to the system (bucket
   /// memory for appending), and released leaves give back theirs from now on.
   void StopInserting()
@@ -98,6 +108,7 @@ private:
   TetraForest Tetrahedra;
   BucketStore Buckets;
   std::vector<SoupTriangle> Moving; // reused buffer for the triangles of a split leaf
+  std::shared_ptr<const BoundaryEdgeCheck> BoundaryCheck;
   TetraForest::LeafHint Hint;
   std::uint64_t Inserted = 0;
   std::uint64_t NextRelease = 0;

@@ -8,6 +8,7 @@
 #include "atpSimplifier.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace atp
 {
@@ -40,11 +41,57 @@ void Finish(MadePatch& made, const PatchJobContext& context, const PatchPrecisio
   made.Cone = FaceNormalCone(decoded);
 }
 
+/// The triangles kept so far, by their corners up to rotation: a repeated triangle's copies.
+/// Open addressing over the kept triangles' numbers, sized for every triangle of the soup.
+class KeptTriangles
+{
+public:
+  explicit KeptTriangles(std::size_t count)
+    : Slots(std::size_t(1) << (1 + int(std::ceil(std::log2(double(std::max<std::size_t>(count, 8)))))), None)
+  {
+  }
+
+  /// Whether a kept triangle of `indices` has the corners of `v` in the same cyclic order; if
+  /// none has, triangle `next` (v) is remembered.
+  bool Repeats(const std::uint32_t v[3], const std::vector<std::uint32_t>& indices, std::uint32_t next)
+  {
+    const int lowest = v[0] < v[1] ? (v[0] < v[2] ? 0 : 2) : (v[1] < v[2] ? 1 : 2);
+    const std::uint32_t a = v[lowest], b = v[(lowest + 1) % 3], c = v[(lowest + 2) % 3];
+    std::uint64_t h = (std::uint64_t(a) * 0x9e3779b97f4a7c15ULL) ^ (std::uint64_t(b) * 0xbf58476d1ce4e5b9ULL) ^
+      (std::uint64_t(c) * 0x94d049bb133111ebULL);
+    const std::size_t mask = this->Slots.size() - 1;
+    for (std::size_t slot = std::size_t(h ^ (h >> 29)) & mask;; slot = (slot + 1) & mask)
+    {
+      const std::uint32_t t = this->Slots[slot];
+      if (t == None)
+      {
+        this->Slots[slot] = next;
+        return false;
+      }
+      const std::uint32_t* w = &indices[3 * std::size_t(t)];
+      for (int r = 0; r < 3; ++r)
+      {
+        if (w[r] == a && w[(r + 1) % 3] == b && w[(r + 2) % 3] == c)
+        {
+          return true;
+        }
+      }
+    }
+  }
+
+private:
+  static constexpr std::uint32_t None = UINT32_MAX;
+  std::vector<std::uint32_t> Slots;
+};
+
 /// Without input colors the soup's (white) corner colors are left out: the model then has none.
 /// Welded as MergePatches welds (the first corner at a position gives its normal and color, and
 /// triangles the weld makes degenerate go), straight from the soup: a normal is decoded once per
-/// vertex rather than once per corner.
-PatchMesh WeldSoup(const std::vector<SoupTriangle>& soup, bool colors)
+/// vertex rather than once per corner. A triangle with the corners of a kept one in the same
+/// order is a copy and goes too: a leaf holds every copy (they share a centroid), and inside a
+/// patch the copies hide that another patch shares their edges, whose ends would then move
+/// there and not in the other patch, a crack. Their number is added to `repeated`.
+PatchMesh WeldSoup(const std::vector<SoupTriangle>& soup, bool colors, std::uint64_t& repeated)
 {
   const std::size_t corners = 3 * soup.size();
   PatchMesh mesh;
@@ -54,6 +101,7 @@ PatchMesh WeldSoup(const std::vector<SoupTriangle>& soup, bool colors)
   mesh.Indices.reserve(corners);
   mesh.BoundaryEdges.reserve(soup.size());
   PositionWelder welder(corners, mesh.Positions.data());
+  KeptTriangles kept(soup.size());
   for (const SoupTriangle& t : soup)
   {
     std::uint32_t v[3];
@@ -74,6 +122,11 @@ PatchMesh WeldSoup(const std::vector<SoupTriangle>& soup, bool colors)
     {
       continue;
     }
+    if (kept.Repeats(v, mesh.Indices, std::uint32_t(mesh.Indices.size() / 3)))
+    {
+      ++repeated;
+      continue;
+    }
     mesh.Indices.insert(mesh.Indices.end(), v, v + 3);
     mesh.BoundaryEdges.push_back(t.BoundaryEdges);
   }
@@ -90,7 +143,7 @@ PatchJobResult MakeLeafPatch(const PatchJobContext& context, const PatchJob& job
   ThreadCpuLap lap;
   PatchJobResult result;
   result.Patches.resize(1);
-  result.Patches[0].Mesh = WeldSoup(job.Soup, context.Colors);
+  result.Patches[0].Mesh = WeldSoup(job.Soup, context.Colors, result.RepeatedTrianglesDropped);
   lap.Lap(result.Cpu.Prepare);
   Finish(result.Patches[0], context, PrecisionFor(context.Grid, 0));
   lap.Lap(result.Cpu.Encode);

@@ -14,7 +14,7 @@ namespace
 /// triangles over its quotas instead of a flag; 3: and the closed pieces removed; 4: and the
 /// CPU time of its steps; 5: the context carries the cache order. TestPatchJob pins a result
 /// message's size.
-constexpr std::uint64_t MessageVersion = 5;
+constexpr std::uint64_t MessageVersion = 6;
 static_assert(sizeof(JobCpuSeconds) == 3 * sizeof(double),
   "a step added to JobCpuSeconds changes the result message: bump MessageVersion");
 
@@ -238,6 +238,7 @@ void EncodeResult(const PatchJobResult& result, std::vector<std::uint8_t>& out)
   w.Put(result.Collapses);
   w.Put(result.TrianglesOverQuotas);
   w.Put(result.PiecesRemoved);
+  w.Put(result.RepeatedTrianglesDropped);
   w.Put(result.Cpu);
 }
 
@@ -256,6 +257,7 @@ void DecodeResult(const std::uint8_t* data, std::size_t bytes, PatchJobResult& o
   out.Collapses = r.Get<std::uint64_t>();
   out.TrianglesOverQuotas = r.Get<std::uint64_t>();
   out.PiecesRemoved = r.Get<std::uint64_t>();
+  out.RepeatedTrianglesDropped = r.Get<std::uint64_t>();
   out.Cpu = r.Get<JobCpuSeconds>();
   r.ExpectEnd();
 }

@@ -67,6 +67,7 @@ std::unique_ptr<Partitioner> PartitionStream(TriangleSource& source,
       done += batch.Count;
       progress(done);
     });
+  partitioner->SetBoundaryCheck(source.BoundaryCheck());
   return partitioner;
 }
 

@@ -12,7 +12,8 @@
 namespace atp
 {
 
-/// Reads `source` to its end into a new Partitioner. `progress(trianglesDone)` runs on the
+/// Reads `source` to its end into a new Partitioner, which then applies the source's boundary
+/// check to the leaves it reads. `progress(trianglesDone)` runs on the
 /// calling thread after every batch; it may throw to cancel. Errors of the reader (InputError)
 /// and of the partitioner (scratch disk full) reach the caller; the reader thread is always
 /// joined first.

@@ -41,6 +41,13 @@ public:
     return this->EndPasses(u, v) && this->EndPasses(v, u);
   }
 
+  /// Whether an edge of u is used an odd number of times (the test of IsBoundaryEdge can pass
+  /// at u only then).
+  bool OnOpenEdge(std::uint32_t u) const
+  {
+    return this->Entries[u].NeighbourXor != 0 || this->Entries[u].HashXor != 0;
+  }
+
   /// Lets the sketch's pages leave resident memory (they stay in its scratch file).
   void ReleaseResidentPages() const;
 

@@ -75,6 +75,7 @@ MeshTriangleSource::MeshTriangleSource(
 {
   this->CheckVerticesAndBound();
   this->FirstPass();
+  this->CollectOpenEdgeEnds();
 }
 
 void MeshTriangleSource::CheckVerticesAndBound()
@@ -110,6 +111,10 @@ bool MeshTriangleSource::Keep(const std::uint32_t triangle[3], float corners[3][
   for (int c = 0; c < 3; ++c)
   {
     this->Vertices.Get(triangle[c], corners[c]);
+    for (int a = 0; a < 3; ++a)
+    {
+      corners[c][a] += 0.0f; // -0 becomes +0: one point, one bit pattern for welding
+    }
   }
   return !HasZeroArea(corners);
 }
@@ -187,6 +192,36 @@ void MeshTriangleSource::FirstPass()
   this->Fans.Reset(PolygonBatch());
 }
 
+void MeshTriangleSource::CollectOpenEdgeEnds()
+{
+  for (std::uint64_t i = 0; i < this->Vertices.Count; ++i)
+  {
+    this->BoundResidentMemory();
+    if (this->Sketch.OnOpenEdge(std::uint32_t(i)))
+    {
+      float p[3];
+      this->Vertices.Get(std::uint32_t(i), p);
+      this->Check->AddEndPosition(p);
+    }
+  }
+}
+
+void MeshTriangleSource::CountEdgesBetweenEnds(const SoupTriangle& soup)
+{
+  bool end[3];
+  for (int c = 0; c < 3; ++c)
+  {
+    end[c] = this->Check->IsEndPosition(soup.V[c]);
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    if (end[c] && end[(c + 1) % 3])
+    {
+      this->Check->Count(soup.V[c], soup.V[(c + 1) % 3]);
+    }
+  }
+}
+
 void MeshTriangleSource::BoundResidentMemory()
 {
   if (++this->VisitedSinceRelease < ReleaseInterval)
@@ -239,12 +274,23 @@ void MeshTriangleSource::SetCornerColors(const std::uint32_t triangle[3], SoupTr
   }
 }
 
+void MeshTriangleSource::FinishBoundaryCheck()
+{
+  this->Statistics.BoundaryEdges = this->Check->EdgesUsedOnce();
+  this->Statistics.SharedOpenEdges = this->Check->EdgesShared();
+  this->Statistics.BoundaryUnchecked = this->Check->Overflowed();
+}
+
 bool MeshTriangleSource::StartNextBatch()
 {
   PolygonBatch batch;
   if (this->FacesDone || !this->Mesh->NextBatch(batch))
   {
-    this->FacesDone = true;
+    if (!this->FacesDone)
+    {
+      this->FacesDone = true;
+      this->FinishBoundaryCheck();
+    }
     return false;
   }
   this->Fans.Reset(batch);
@@ -277,10 +323,13 @@ std::size_t MeshTriangleSource::Read(SoupTriangle* out, std::size_t max)
       if (this->Sketch.IsBoundaryEdge(triangle[c], triangle[(c + 1) % 3]))
       {
         boundary |= std::uint8_t(1u << c);
-        ++this->Statistics.BoundaryEdges;
       }
     }
     soup.BoundaryEdges = boundary;
+    if (this->Check->HasEndPositions())
+    {
+      this->CountEdgesBetweenEnds(soup);
+    }
     this->SetCornerNormals(triangle, soup);
     this->SetCornerColors(triangle, soup);
     std::memset(soup.Padding, 0, sizeof(soup.Padding));

@@ -1,10 +1,11 @@
 // The one path from a format reader's polygons to soup triangles, shared by every format: fan
-// triangulation, dropping degenerate triangles, marking boundary edges with a BoundarySketch and
-// giving corners their vertex normals. Opening makes a first pass over the faces (sketch, normal
+// triangulation, dropping degenerate triangles, marking boundary edges with a BoundarySketch
+// (checked by position with a BoundaryEdgeCheck) and giving corners their vertex normals. Opening makes a first pass over the faces (sketch, normal
 // sums, counts, errors); Read makes the second.
 #ifndef atpMeshTriangleSource_h
 #define atpMeshTriangleSource_h
 
+#include "atpBoundaryEdgeCheck.h"
 #include "atpBoundarySketch.h"
 #include "atpFanCursor.h"
 #include "atpPolygonMesh.h"
@@ -30,16 +31,23 @@ public:
   std::size_t Read(SoupTriangle* out, std::size_t max) override;
   const InputStats& Stats() const override { return this->Statistics; }
   bool HasColors() const override { return this->Statistics.HasColors; }
+  std::shared_ptr<const BoundaryEdgeCheck> BoundaryCheck() const override { return this->Check; }
 
 private:
   void CheckVerticesAndBound();
   /// The first pass: boundary sketch and area-weighted vertex normal sums.
   void FirstPass();
+  /// Gives the check the positions of the vertices on edges the sketch found open.
+  void CollectOpenEdgeEnds();
+  /// Counts the triangle's edges between two such positions in the check.
+  void CountEdgesBetweenEnds(const SoupTriangle& soup);
   void SetCornerNormals(const std::uint32_t triangle[3], SoupTriangle& soup) const;
   void SetCornerColors(const std::uint32_t triangle[3], SoupTriangle& soup) const;
   /// Gets the corner positions; false for a degenerate triangle.
   bool Keep(const std::uint32_t triangle[3], float corners[3][3]) const;
   bool StartNextBatch();
+  /// At the end of the faces: the boundary statistics from the check.
+  void FinishBoundaryCheck();
   /// Called per triangle visited: every few million, releases the resident pages of the
   /// vertex array and the sketch, so a mesh of any size streams in bounded memory.
   void BoundResidentMemory();
@@ -49,6 +57,7 @@ private:
   VertexView Vertices;
   Box VertexBounds;
   BoundarySketch Sketch;
+  std::shared_ptr<BoundaryEdgeCheck> Check = std::make_shared<BoundaryEdgeCheck>();
   ScratchArray<std::array<float, 3>> NormalSums;
   InputStats Statistics;
   std::uint64_t KeptTriangles = 0;

@@ -14,6 +14,7 @@
 
 namespace atp
 {
+class BoundaryEdgeCheck;
 
 /// Axis-aligned box, in input coordinates. Empty until the first point is added.
 struct VTKATPIO_EXPORT Box
@@ -62,7 +63,12 @@ struct InputStats
   std::uint64_t FacesRead = 0;           ///< faces in the file (polygons count once)
   std::uint64_t TrianglesEmitted = 0;    ///< after fan triangulation, minus dropped ones
   std::uint64_t DegenerateDropped = 0;   ///< repeated corner or zero area: dropped, not fatal
-  std::uint64_t BoundaryEdges = 0;       ///< edges used by exactly one triangle
+  std::uint64_t BoundaryEdges = 0;       ///< edges used by exactly one triangle, by position
+  /// Edges open by vertex index that more triangles use by position (unwelded vertices, a
+  /// repeated triangle, several sheets on an edge): not boundary edges (BoundaryEdgeCheck).
+  std::uint64_t SharedOpenEdges = 0;
+  /// Too many edges open by vertex index to check by position: none is a boundary edge.
+  bool BoundaryUnchecked = false;
   bool HasColors = false;                ///< the input has per-vertex colors
 };
 
@@ -88,6 +94,11 @@ public:
   /// Whether the corners carry the input's colors (known as soon as the source is open);
   /// otherwise they are opaque white.
   virtual bool HasColors() const { return false; }
+
+  /// Once every triangle is read: the check of the BoundaryEdges bits by position that the
+  /// triangles read need before simplification (Partitioner::ReadLeaf applies it); null when
+  /// the bits need none.
+  virtual std::shared_ptr<const BoundaryEdgeCheck> BoundaryCheck() const { return nullptr; }
 };
 
 /// A model keeps positions, bounds and errors as 32-bit floats: an input reaching near FLT_MAX

@@ -522,6 +522,68 @@ TEST_F(Construction, ClosedSurfaceCutsHaveNoOpenEdge)
   std::remove(path.c_str());
 }
 
+// The boundary sketch reads vertex indices and parity: a soup's shared edges and a repeated
+// triangle's edges (used three times) look open there. Only edges used once by position may be
+// simplified along, and a leaf keeps one copy of a repeated triangle, or the coarse levels crack.
+TEST_F(Construction, UnweldedAndRepeatedTrianglesLeaveNoCrack)
+{
+  vtkNew<vtkPolyData> welded;
+  welded->DeepCopy(Torus(120, 60, 2));
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> soup;
+  const auto add = [&](const vtkIdType* ids) {
+    vtkIdType own[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      own[c] = points->InsertNextPoint(welded->GetPoint(ids[c]));
+    }
+    soup->InsertNextCell(3, own);
+  };
+  vtkIdType size;
+  const vtkIdType* ids;
+  vtkCellArray* polys = welded->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(size, ids);)
+  {
+    add(ids);
+  }
+  // Every 50th triangle once more, its corners welded to the first copy's, in another rotation.
+  std::uint64_t repeated = 0;
+  for (vtkIdType t = 0; t < polys->GetNumberOfCells(); t += 50, ++repeated)
+  {
+    const vtkIdType rotated[3] = { 3 * t + 1, 3 * t + 2, 3 * t };
+    soup->InsertNextCell(3, rotated);
+  }
+  vtkNew<vtkPolyData> mesh;
+  mesh->SetPoints(points);
+  mesh->SetPolys(soup);
+  const std::string path = TempPath("soup.atp");
+  vtkNew<vtkATPBuilder> builder;
+  builder->SetInputData(mesh);
+  builder->SetFileName(path.c_str());
+  builder->SetLeafCapacity(300);
+  builder->SetPatchBudget(150);
+  ASSERT_EQ(builder->Build(), 1) << builder->GetErrorMessage();
+  EXPECT_EQ(builder->GetInputStats().BoundaryEdges, 2u * 14) << "the two holes' edges, by position";
+  EXPECT_GT(builder->GetInputStats().SharedOpenEdges, 0u);
+  EXPECT_EQ(builder->GetConstructionStats().RepeatedTrianglesDropped, repeated);
+
+  const atp::ModelFile model = atp::ModelFile::Open(path);
+  EXPECT_EQ(model.Header().InputTriangles, std::uint64_t(polys->GetNumberOfCells()));
+  EXPECT_EQ(model.Header().InputBoundaryEdges, 2u * 14);
+  const std::set<Position> boundaryVertices =
+    atp::test::EdgeEnds(OpenEdges(atp::ExtractCut(model, atp::SelectLevel(model, 64))));
+  ASSERT_EQ(boundaryVertices.size(), 2u * 14);
+  ASSERT_GE(model.Header().Depth, 4u);
+  for (int level = 0; level <= int(model.Header().Depth); ++level)
+  {
+    const std::vector<Edge> open = OpenEdges(atp::ExtractCut(model, atp::SelectLevel(model, level)));
+    EXPECT_EQ(std::count_if(open.begin(), open.end(), [&](const Edge& e) {
+      return !boundaryVertices.count(e.first) || !boundaryVertices.count(e.second);
+    }), 0) << "level " << level << ": a crack (open edge off the input's boundary)";
+  }
+  std::remove(path.c_str());
+}
+
 TEST_F(Construction, SaturatedBoundsAreEqualOverDiamondsAndMonotone)
 {
   const atp::ModelFile model = atp::ModelFile::Open(Path);

@@ -233,6 +233,7 @@ TEST(PatchJob, MalformedMessagesAreRefused)
   made.Collapses = 4321;
   made.TrianglesOverQuotas = 12345;
   made.PiecesRemoved = 678;
+  made.RepeatedTrianglesDropped = 91;
   made.Cpu = { 0.25, 1.5, 0.75 };
   atp::EncodeResult(made, message);
   {
@@ -241,6 +242,7 @@ TEST(PatchJob, MalformedMessagesAreRefused)
     EXPECT_EQ(back.Collapses, 4321u);
     EXPECT_EQ(back.TrianglesOverQuotas, 12345u);
     EXPECT_EQ(back.PiecesRemoved, 678u);
+    EXPECT_EQ(back.RepeatedTrianglesDropped, 91u);
     EXPECT_EQ(back.Cpu.Prepare, 0.25);
     EXPECT_EQ(back.Cpu.Simplify, 1.5);
     EXPECT_EQ(back.Cpu.Encode, 0.75);
@@ -250,7 +252,7 @@ TEST(PatchJob, MalformedMessagesAreRefused)
   atp::PatchJobResult empty;
   std::vector<std::uint8_t> emptyMessage;
   atp::EncodeResult(empty, emptyMessage);
-  EXPECT_EQ(emptyMessage.size(), 64u);
+  EXPECT_EQ(emptyMessage.size(), 72u);
   ExpectOnlyTheWholeMessageDecodes(message, [](const std::vector<std::uint8_t>& m) {
     atp::PatchJobResult decoded;
     atp::DecodeResult(m.data(), m.size(), decoded);

@@ -1,0 +1,84 @@
+// Which of the edges the boundary sketch flags are boundary edges by position.
+//
+// The sketch (atpBoundarySketch.h) works on vertex indices and parity. An input whose coincident
+// vertices are not welded (a triangle soup, a seam of duplicated vertices) has shared edges that
+// read as boundary there, and so has an edge used three times (a repeated triangle, three sheets
+// on one edge). Simplification may move a boundary vertex along the boundary, which opens a
+// crack when another patch holds the same edge: so an edge stays a boundary edge only if one
+// triangle uses it, counted by the positions of its ends. Edges that are not boundary edges are
+// locked where they cross a patch's border, which never cracks.
+//
+// Every edge the sketch flags joins two vertices on an open edge, so only edges between two of
+// their positions need counting: between the passes over the input, the sketch's open-edge
+// vertices give their positions (AddEndPosition); the second pass counts every use of an edge
+// between two such positions (Count), flagged or not.
+#ifndef atpBoundaryEdgeCheck_h
+#define atpBoundaryEdgeCheck_h
+
+#include "atpTriangleSource.h"
+#include "vtkATPIOModule.h" // export macro
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace atp
+{
+
+class VTKATPIO_EXPORT BoundaryEdgeCheck
+{
+public:
+  /// Edges, and end positions, the check holds at most (18 bytes each at most: 144 MiB each): a
+  /// welded mesh's boundary takes a sliver of it; an unwelded soup of over about 5M triangles
+  /// overflows it.
+  static constexpr std::size_t DefaultMaxEdges = std::size_t(1) << 23;
+
+  explicit BoundaryEdgeCheck(std::size_t maxEdges = DefaultMaxEdges);
+
+  /// The position of a vertex on an edge the sketch found open.
+  void AddEndPosition(const float p[3]);
+  bool HasEndPositions() const { return this->Ends.Count > 0; }
+  bool IsEndPosition(const float p[3]) const;
+
+  /// One use of the edge between the positions a and b, in either direction. Past maxEdges
+  /// distinct edges (or end positions) the tables are dropped and no edge is a boundary edge
+  /// any more (all are locked: no crack, only less simplification along the true boundary).
+  void Count(const float a[3], const float b[3]);
+
+  /// Clears the BoundaryEdges bits of the triangles' edges that are not used exactly once.
+  void Apply(SoupTriangle* triangles, std::size_t count) const;
+
+  /// Distinct edges counted once: the input's boundary edges by position.
+  std::uint64_t EdgesUsedOnce() const;
+  /// Distinct edges counted more than once.
+  std::uint64_t EdgesShared() const;
+  bool Overflowed() const { return this->TooMany; }
+
+private:
+  /// Open addressing with linear probing over 64-bit hashes; key 0 marks an empty slot. Keys
+  /// are hashes: two edges (or positions) that share one count as one, which shares or marks
+  /// more edges than there are and locks them (the safe side).
+  struct Table
+  {
+    std::vector<std::uint64_t> Keys;
+    std::vector<std::uint8_t> Uses; ///< 1, or 2 for "more than once"
+    std::size_t Count = 0;
+
+    std::size_t Slot(std::uint64_t key) const;
+    bool Holds(std::uint64_t key) const;
+    /// One more use of `key`; false (nothing added) when it is new and `max` keys are held.
+    bool Add(std::uint64_t key, std::size_t max);
+    std::uint64_t KeysUsed(std::uint8_t uses) const;
+  };
+
+  void Overflow();
+  bool UsedOnce(const float a[3], const float b[3]) const;
+
+  std::size_t MaxEdges;
+  bool TooMany = false;
+  Table Edges, Ends;
+};
+
+} // namespace atp
+
+#endif
