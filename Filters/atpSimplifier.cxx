@@ -137,7 +137,7 @@ struct Face
 {
   std::uint32_t V[3];
   int Region = 0;
-  std::uint8_t Bits = 0; ///< BoundaryEdges: bit k for the edge from corner k to k + 1
+  std::uint8_t Bits = 0; ///< BoundaryEdges: bit k (3 + k) for the edge from corner k to k + 1
   std::uint8_t Removed = 0;
 };
 
@@ -707,7 +707,8 @@ void Simplifier::Classify(std::uint32_t u)
     const int k = CornerSlot(Fan[i]);
     const std::uint32_t x = Faces[t].V[NextCorner(k)];
     const std::uint32_t y = Faces[t].V[PrevCorner(k)];
-    locked = locked || Marks[x].CountU > 1 || Marks[x].CountV > 1;
+    locked = locked || Marks[x].CountU > 1 || Marks[x].CountV > 1 ||
+      (Faces[t].Bits & ((8u << k) | (8u << PrevCorner(k))));
     if (Marks[x].CountV == 0)
     {
       ++open;
@@ -1217,12 +1218,15 @@ std::int64_t Simplifier::ExcessChange(std::uint32_t u, std::uint32_t v)
 }
 
 // The removed triangle t = (u, v, w): its edges v-w and w-u become one. When exactly one of them
-// was open, the survivor carries that edge's boundary bit.
+// was open, the survivor carries that edge's boundary bit. An input edge of three or more
+// triangles on v-w (u moves, so w-u is none) stays marked on the triangle across w-u, which
+// takes its place: another patch may still hold the edge, and the next level must lock it too.
 void Simplifier::FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, std::uint32_t w)
 {
   const bool openVW = Faces[t].Bits & (1u << EdgeBit(t, v, w));
   const bool openWU = Faces[t].Bits & (1u << EdgeBit(t, w, u));
-  if (!openVW && !openWU)
+  const bool manySheetsVW = Faces[t].Bits & (8u << EdgeBit(t, v, w));
+  if (!openVW && !openWU && !manySheetsVW)
   {
     return; // the usual interior case: nothing to carry
   }
@@ -1244,6 +1248,10 @@ void Simplifier::FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, 
   if (acrossWU != None && acrossVW == None && openVW)
   {
     Faces[acrossWU].Bits |= std::uint8_t(1u << EdgeBit(acrossWU, u, w));
+  }
+  if (acrossWU != None && manySheetsVW)
+  {
+    Faces[acrossWU].Bits |= std::uint8_t(8u << EdgeBit(acrossWU, u, w));
   }
   if (acrossVW != None && acrossWU == None && openWU)
   {

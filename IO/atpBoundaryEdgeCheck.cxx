@@ -102,7 +102,7 @@ bool BoundaryEdgeCheck::Table::Add(std::uint64_t key, std::size_t max)
     this->Keys[slot] = key;
     ++this->Count;
   }
-  this->Uses[slot] = std::uint8_t(std::min(2, this->Uses[slot] + 1));
+  this->Uses[slot] = std::uint8_t(std::min(3, this->Uses[slot] + 1));
   return true;
 }
 
@@ -144,14 +144,14 @@ void BoundaryEdgeCheck::Count(const float a[3], const float b[3])
   }
 }
 
-bool BoundaryEdgeCheck::UsedOnce(const float a[3], const float b[3]) const
+int BoundaryEdgeCheck::Uses(const float a[3], const float b[3]) const
 {
   if (this->Edges.Keys.empty())
   {
-    return false;
+    return 0;
   }
   const std::size_t slot = this->Edges.Slot(EdgeKey(a, b));
-  return this->Edges.Keys[slot] != 0 && this->Edges.Uses[slot] == 1;
+  return this->Edges.Keys[slot] != 0 ? this->Edges.Uses[slot] : 0;
 }
 
 void BoundaryEdgeCheck::Apply(SoupTriangle* triangles, std::size_t count) const
@@ -162,9 +162,18 @@ void BoundaryEdgeCheck::Apply(SoupTriangle* triangles, std::size_t count) const
     for (int c = 0; c < 3; ++c)
     {
       const std::uint8_t bit = std::uint8_t(1u << c);
-      if ((triangle.BoundaryEdges & bit) && !this->UsedOnce(triangle.V[c], triangle.V[(c + 1) % 3]))
+      if (!(triangle.BoundaryEdges & bit))
+      {
+        continue;
+      }
+      const int uses = this->Uses(triangle.V[c], triangle.V[(c + 1) % 3]);
+      if (uses != 1)
       {
         triangle.BoundaryEdges &= std::uint8_t(~bit);
+      }
+      if (uses >= 3)
+      {
+        triangle.BoundaryEdges |= std::uint8_t(8u << c);
       }
     }
   }
@@ -177,7 +186,7 @@ std::uint64_t BoundaryEdgeCheck::EdgesUsedOnce() const
 
 std::uint64_t BoundaryEdgeCheck::EdgesShared() const
 {
-  return this->Edges.KeysUsed(2);
+  return this->Edges.KeysUsed(2) + this->Edges.KeysUsed(3);
 }
 
 } // namespace atp

@@ -45,7 +45,8 @@ public:
   /// any more (all are locked: no crack, only less simplification along the true boundary).
   void Count(const float a[3], const float b[3]);
 
-  /// Clears the BoundaryEdges bits of the triangles' edges that are not used exactly once.
+  /// Clears the BoundaryEdges bits of the triangles' edges that are not used exactly once, and
+  /// marks those used three times or more as edges whose ends never move (bit 3 + i).
   void Apply(SoupTriangle* triangles, std::size_t count) const;
 
   /// Distinct edges counted once: the input's boundary edges by position.
@@ -61,7 +62,7 @@ private:
   struct Table
   {
     std::vector<std::uint64_t> Keys;
-    std::vector<std::uint8_t> Uses; ///< 1, or 2 for "more than once"
+    std::vector<std::uint8_t> Uses; ///< 1, 2, or 3 for "three times or more"
     std::size_t Count = 0;
 
     std::size_t Slot(std::uint64_t key) const;
@@ -72,7 +73,8 @@ private:
   };
 
   void Overflow();
-  bool UsedOnce(const float a[3], const float b[3]) const;
+  /// How many times the edge was counted: 0 (never), 1, 2, or 3 for three or more.
+  int Uses(const float a[3], const float b[3]) const;
 
   std::size_t MaxEdges;
   bool TooMany = false;

@@ -572,7 +572,20 @@ std::vector<std::uint8_t> EncodePatch(const PatchMesh& mesh, const QuantizationG
   // Border vertices first, each group in fetch order: the interior's zeroed low bits then form
   // long runs the vertex codec stores in almost nothing.
   const EdgesByStart edges(indices, vertexCount);
-  const std::vector<std::uint8_t> border = BorderVertices(edges, indices, vertexCount);
+  std::vector<std::uint8_t> border = BorderVertices(edges, indices, vertexCount);
+  // An input edge of three or more triangles may look inner here, with two of its triangles in
+  // this patch, while another patch holds a third: its ends are shared, so stored exactly.
+  for (std::size_t t = 0; t < mesh.BoundaryEdges.size() && t < mesh.TriangleCount(); ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      if (mesh.BoundaryEdges[t] & (8u << k))
+      {
+        border[mesh.Indices[3 * t + std::size_t(k)]] = 1;
+        border[mesh.Indices[3 * t + std::size_t(k + 1) % 3]] = 1;
+      }
+    }
+  }
   std::vector<std::uint32_t> byFetch(used);
   for (std::size_t v = 0; v < vertexCount; ++v)
   {

@@ -17,7 +17,9 @@ struct PatchMesh
   std::vector<std::uint8_t> Colors;    ///< r, g, b, a per vertex, or empty when the input has none
   std::vector<std::uint32_t> Indices;  ///< three per triangle
   /// Per triangle, bit i: the edge from corner i to corner (i+1)%3 is a boundary edge of the
-  /// input mesh (not a border between patches). Kept through simplification.
+  /// input mesh (not a border between patches); bit 3 + i: an edge of three or more triangles
+  /// of the input, whose ends never move (SoupTriangle::BoundaryEdges). Kept through
+  /// simplification.
   std::vector<std::uint8_t> BoundaryEdges;
 
   std::size_t VertexCount() const { return Positions.size() / 3; }

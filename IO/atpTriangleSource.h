@@ -42,6 +42,8 @@ struct SoupTriangle
   std::int16_t Normals[3][2];
   /// Bit i set: the edge from corner i to corner (i+1)%3 is a boundary edge of the input mesh
   /// (used by exactly one triangle). Simplification must know these (paper, section 5.2).
+  /// Bit 3 + i set: that edge is used by three or more triangles (BoundaryEdgeCheck): its ends
+  /// never move, since a patch holding two of them would take it for an inner edge.
   std::uint8_t BoundaryEdges;
   std::uint8_t Padding[3];
   /// Corner colors, RGBA; opaque white when the input has none (the bytes stay deterministic).

@@ -447,6 +447,63 @@ TEST(Simplifier, NonManifoldAndMisorientedVerticesNeverMove)
 // Two triangles back to back with no other neighbors (a closed component of no volume, which a
 // coarse level can leave behind): collapsing one of its corners would take both triangles and
 // leave the vertex it collapsed into with none, its error measured against nothing.
+// An input edge of three or more triangles (bit 3 + k) looks inner in a patch holding two of
+// them: its ends never move, and every triangle that holds it in the output keeps the mark,
+// also where a collapse into one of its ends removed the triangle that had it.
+TEST(Simplifier, EdgesOfManySheetsStayAndKeepTheirMark)
+{
+  const int n = 24, line = n / 2;
+  PatchMesh mesh = Grid(n, Bumps, false);
+  const auto onLine = [&](std::uint32_t v) { return int(v % std::uint32_t(n + 1)) == line; };
+  std::set<std::uint32_t> lineVertices;
+  for (std::size_t t = 0; t < mesh.TriangleCount(); ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t a = mesh.Indices[3 * t + std::size_t(k)], b = mesh.Indices[3 * t + std::size_t(k + 1) % 3];
+      if (onLine(a) && onLine(b))
+      {
+        mesh.BoundaryEdges[t] |= std::uint8_t(8u << k);
+        lineVertices.insert(a);
+        lineVertices.insert(b);
+      }
+    }
+  }
+  const SimplifyResult result = Simplify(mesh, 1, OneRegion(), { 200 });
+  const PatchMesh out = Joined(result);
+  std::map<PositionKey, std::uint32_t> outVertex;
+  for (std::uint32_t v = 0; v < out.VertexCount(); ++v)
+  {
+    outVertex[KeyOf(out, v)] = v;
+  }
+  std::map<std::uint32_t, std::uint32_t> rankOnLine; // output vertex -> its place along the line
+  for (const std::uint32_t v : lineVertices)
+  {
+    const auto found = outVertex.find(KeyOf(mesh, v));
+    ASSERT_TRUE(found != outVertex.end()) << "a vertex of the line moved";
+    rankOnLine[found->second] = v / std::uint32_t(n + 1);
+  }
+  // Each edge of the line, on each side, in a triangle that keeps its mark; a chord between
+  // two of its vertices (a sliver along the line, which collapses into its ends can leave) is
+  // no edge of the line.
+  std::size_t lineEdges = 0;
+  for (std::size_t t = 0; t < out.TriangleCount(); ++t)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const auto a = rankOnLine.find(out.Indices[3 * t + std::size_t(k)]);
+      const auto b = rankOnLine.find(out.Indices[3 * t + std::size_t(k + 1) % 3]);
+      if (a != rankOnLine.end() && b != rankOnLine.end() && (a->second + 1 == b->second || b->second + 1 == a->second))
+      {
+        ++lineEdges;
+        EXPECT_TRUE(out.BoundaryEdges[t] & (8u << k)) << "an edge of the line lost its mark";
+      }
+    }
+  }
+  EXPECT_EQ(lineEdges, 2u * n) << "each edge of the line, once on each side";
+  EXPECT_LT(TriangleTotal(result), mesh.TriangleCount() / 3);
+}
+
 TEST(Simplifier, TwoTrianglesBackToBackStay)
 {
   PatchMesh mesh = Grid(20, Bumps, true);

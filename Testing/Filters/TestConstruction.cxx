@@ -162,6 +162,22 @@ int CountLoops(const std::vector<Edge>& edges)
   return int(roots.size());
 }
 
+/// No level of `model` has an open edge with an end off the input's boundary (the finest
+/// level's open edges, which are the input's own).
+void ExpectEveryLevelCrackFree(const atp::ModelFile& model)
+{
+  const std::set<Position> boundaryVertices =
+    atp::test::EdgeEnds(OpenEdges(atp::ExtractCut(model, atp::SelectLevel(model, 64))));
+  ASSERT_GE(model.Header().Depth, 4u);
+  for (int level = 0; level <= int(model.Header().Depth); ++level)
+  {
+    const std::vector<Edge> open = OpenEdges(atp::ExtractCut(model, atp::SelectLevel(model, level)));
+    EXPECT_EQ(std::count_if(open.begin(), open.end(), [&](const Edge& e) {
+      return !boundaryVertices.count(e.first) || !boundaryVertices.count(e.second);
+    }), 0) << "level " << level << ": a crack (open edge off the input's boundary)";
+  }
+}
+
 class Construction : public ::testing::Test
 {
 protected:
@@ -570,17 +586,65 @@ TEST_F(Construction, UnweldedAndRepeatedTrianglesLeaveNoCrack)
   const atp::ModelFile model = atp::ModelFile::Open(path);
   EXPECT_EQ(model.Header().InputTriangles, std::uint64_t(polys->GetNumberOfCells()));
   EXPECT_EQ(model.Header().InputBoundaryEdges, 2u * 14);
-  const std::set<Position> boundaryVertices =
-    atp::test::EdgeEnds(OpenEdges(atp::ExtractCut(model, atp::SelectLevel(model, 64))));
-  ASSERT_EQ(boundaryVertices.size(), 2u * 14);
-  ASSERT_GE(model.Header().Depth, 4u);
-  for (int level = 0; level <= int(model.Header().Depth); ++level)
+  EXPECT_EQ(atp::test::EdgeEnds(OpenEdges(atp::ExtractCut(model, atp::SelectLevel(model, 64)))).size(), 2u * 14);
+  ExpectEveryLevelCrackFree(model);
+  std::remove(path.c_str());
+}
+
+// Three sheets on one spine: its edges are used three times, so they are no boundary, and a
+// patch holding two of the sheets would take them for inner edges: their ends must neither
+// move nor be stored on a coarser grid than in the patch holding the third sheet.
+TEST_F(Construction, EdgesOfThreeSheetsStayPut)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> sheets;
+  const int n = 50;
+  std::vector<vtkIdType> spine;
+  for (int k = 0; k < 3; ++k)
   {
-    const std::vector<Edge> open = OpenEdges(atp::ExtractCut(model, atp::SelectLevel(model, level)));
-    EXPECT_EQ(std::count_if(open.begin(), open.end(), [&](const Edge& e) {
-      return !boundaryVertices.count(e.first) || !boundaryVertices.count(e.second);
-    }), 0) << "level " << level << ": a crack (open edge off the input's boundary)";
+    const double angle = 2 * M_PI * k / 3 + 0.3;
+    std::vector<vtkIdType> ids;
+    for (int j = 0; j <= n; ++j)
+    {
+      for (int i = 0; i <= n; ++i)
+      {
+        if (i == 0 && k > 0)
+        {
+          ids.push_back(spine[std::size_t(j)]); // the first sheet's spine vertices
+          continue;
+        }
+        const double r = double(i) / n, z = double(j) / n;
+        ids.push_back(points->InsertNextPoint(
+          r * std::cos(angle), r * std::sin(angle) + 0.02 * std::sin(9 * r), z));
+        if (i == 0)
+        {
+          spine.push_back(ids.back());
+        }
+      }
+    }
+    for (int j = 0; j < n; ++j)
+    {
+      for (int i = 0; i < n; ++i)
+      {
+        const auto id = [&](int ii, int jj) { return ids[std::size_t(jj * (n + 1) + ii)]; };
+        // The second sheet faces the other way: with the first, it makes one consistently
+        // oriented surface through the spine, which a patch holding both takes for a manifold.
+        const bool flip = k == 1;
+        const vtkIdType t0[3] = { id(i, j), id(i + 1, j + (flip ? 1 : 0)), id(i + 1, j + (flip ? 0 : 1)) };
+        const vtkIdType t1[3] = { id(i, j), flip ? id(i, j + 1) : id(i + 1, j + 1), flip ? id(i + 1, j + 1) : id(i, j + 1) };
+        sheets->InsertNextCell(3, t0);
+        sheets->InsertNextCell(3, t1);
+      }
+    }
   }
+  vtkNew<vtkPolyData> mesh;
+  mesh->SetPoints(points);
+  mesh->SetPolys(sheets);
+  const std::string path = TempPath("sheets.atp");
+  ASSERT_EQ(BuildModel(mesh, path, 2, 300, 150), 1);
+  const atp::ModelFile model = atp::ModelFile::Open(path);
+  EXPECT_EQ(model.Header().InputBoundaryEdges, 3u * 3 * n) << "each sheet's three free sides";
+  ExpectEveryLevelCrackFree(model);
   std::remove(path.c_str());
 }
 

@@ -52,18 +52,21 @@ TEST(BoundaryEdgeCheck, OnlyEdgesUsedOnceByPositionStayBoundary)
   EXPECT_EQ(uncounted.BoundaryEdges, 0);
 }
 
-TEST(BoundaryEdgeCheck, AnEdgeUsedThreeTimesIsNotBoundary)
+TEST(BoundaryEdgeCheck, AnEdgeUsedThreeTimesIsNotBoundaryAndStays)
 {
   atp::BoundaryEdgeCheck check;
   for (int use = 0; use < 3; ++use)
   {
     check.Count(P, Q);
   }
+  check.Count(Q, R);
+  check.Count(Q, R);
   EXPECT_EQ(check.EdgesUsedOnce(), 0u);
-  EXPECT_EQ(check.EdgesShared(), 1u);
-  atp::SoupTriangle t = Triangle(P, Q, R, 0b001);
+  EXPECT_EQ(check.EdgesShared(), 2u);
+  // P-Q (corner 0 to 1), used three times, is marked to stay; Q-R, used twice, is not.
+  atp::SoupTriangle t = Triangle(P, Q, R, 0b011);
   check.Apply(&t, 1);
-  EXPECT_EQ(t.BoundaryEdges, 0);
+  EXPECT_EQ(t.BoundaryEdges, 0b1000);
 }
 
 TEST(BoundaryEdgeCheck, NegativeZeroIsTheSamePoint)
