@@ -74,6 +74,10 @@ MeshTriangleSource::MeshTriangleSource(
   , NormalSums(scratchDirectory, this->Vertices.Count)
 {
   this->CheckVerticesAndBound();
+  if (!this->VertexBounds.IsEmpty()) // without vertices no triangle is kept: the mesh is empty
+  {
+    this->Grid = QuantizationGrid::ForBounds(this->VertexBounds.Min.data(), this->VertexBounds.Max.data());
+  }
   this->FirstPass();
   this->CollectOpenEdgeEnds();
 }
@@ -116,7 +120,34 @@ bool MeshTriangleSource::Keep(const std::uint32_t triangle[3], float corners[3][
       corners[c][a] += 0.0f; // -0 becomes +0: one point, one bit pattern for welding
     }
   }
-  return !HasZeroArea(corners);
+  return !HasZeroArea(corners) && !this->VanishesOnTheGrid(corners);
+}
+
+bool MeshTriangleSource::VanishesOnTheGrid(const float corners[3][3]) const
+{
+  // Rounding to the grid moves each corner by at most (sqrt(3)/2) step, which changes twice the
+  // area, |e x f|, by at most about 1.74 step (|e| + |f|) + 3.1 step^2, whose square is below
+  // 16 step^2 (|e|^2 + |f|^2) + 32 step^4: a triangle with more keeps an area, and nearly every
+  // one has far more.
+  double e[3], f[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    e[a] = double(corners[1][a]) - double(corners[0][a]);
+    f[a] = double(corners[2][a]) - double(corners[0][a]);
+  }
+  const double cross[3] = { e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2], e[0] * f[1] - e[1] * f[0] };
+  const double step2 = this->Grid.Step * this->Grid.Step;
+  const double edges2 = e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
+  if (cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2] > 16 * step2 * edges2 + 32 * step2 * step2)
+  {
+    return false;
+  }
+  float onGrid[3][3];
+  for (int c = 0; c < 3; ++c)
+  {
+    this->Grid.Dequantize(this->Grid.Quantize(corners[c]).data(), onGrid[c]);
+  }
+  return HasZeroArea(onGrid);
 }
 
 void MeshTriangleSource::FirstPass()

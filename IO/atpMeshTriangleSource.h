@@ -9,6 +9,7 @@
 #include "atpBoundarySketch.h"
 #include "atpFanCursor.h"
 #include "atpPolygonMesh.h"
+#include "atpQuantizationGrid.h"
 #include "atpTriangleSource.h"
 
 #include <array>
@@ -43,8 +44,13 @@ private:
   void CountEdgesBetweenEnds(const SoupTriangle& soup);
   void SetCornerNormals(const std::uint32_t triangle[3], SoupTriangle& soup) const;
   void SetCornerColors(const std::uint32_t triangle[3], SoupTriangle& soup) const;
-  /// Gets the corner positions; false for a degenerate triangle.
+  /// Gets the corner positions; false for a degenerate triangle, also one the model's grid
+  /// makes degenerate (VanishesOnTheGrid).
   bool Keep(const std::uint32_t triangle[3], float corners[3][3]) const;
+  /// Whether the model's grid (QuantizationGrid::ForBounds of the input's box), on which the
+  /// leaves store the triangle, leaves it no area: a needle thinner than the step, which the
+  /// largest coordinate sets.
+  bool VanishesOnTheGrid(const float corners[3][3]) const;
   bool StartNextBatch();
   /// At the end of the faces: the boundary statistics from the check.
   void FinishBoundaryCheck();
@@ -56,6 +62,7 @@ private:
   std::unique_ptr<PolygonMesh> Mesh;
   VertexView Vertices;
   Box VertexBounds;
+  QuantizationGrid Grid; ///< the model's, once the bounds are known
   BoundarySketch Sketch;
   std::shared_ptr<BoundaryEdgeCheck> Check = std::make_shared<BoundaryEdgeCheck>();
   ScratchArray<std::array<float, 3>> NormalSums;

@@ -1033,15 +1033,29 @@ TEST_F(TriangleSources, DegenerateTrianglesAreDroppedAndCounted)
   }
 }
 
-TEST_F(TriangleSources, TinyButNonZeroAreaIsKept)
+TEST_F(TriangleSources, ThinnerThanTheModelsGridIsDegenerate)
 {
-  // A sliver whose area underflows float arithmetic but is exactly non-zero.
+  // The leaves store corners on one grid whose step is the float spacing at the largest
+  // coordinate (here 1: 2^-23). A sliver one step wide keeps its area there; one whose apex
+  // rounds onto its base does not, however exact its area in float, nor does a needle far out
+  // along x, where the step is 2^-23 of 2^20.
   Mesh mesh;
-  mesh.Points = { { 0, 0, 0 }, { 1, 0, 0 }, { 0.5, 1e-30, 0 }, { 1e20, 1e-20, 0 } };
-  mesh.Faces = { { 0, 1, 2 }, { 0, 1, 3 } };
+  const double step = std::ldexp(1.0, -23);
+  mesh.Points = { { 0, 0, 0 }, { 1, 0, 0 }, { 0.5, step, 0 }, { 0.5, 1e-30, 0 }, { 0.5, 0.4 * step, 0 },
+    { 0.75, 0.5, 0 } };
+  mesh.Faces = { { 0, 1, 2 }, { 0, 1, 3 }, { 0, 1, 4 }, { 0, 1, 5 } };
   const Result result = this->Read(this->Write("sliver.ply", PlyBytes(mesh)));
   EXPECT_EQ(result.Triangles.size(), 2u);
-  EXPECT_EQ(result.Stats.DegenerateDropped, 0u);
+  EXPECT_EQ(result.Stats.DegenerateDropped, 2u);
+
+  Mesh far;
+  far.Points = { { 0, 0, 0 }, { 1048576, 0, 0 }, { 524288, 0.01, 0 }, { 0, 1, 0 } };
+  far.Faces = { { 0, 1, 2 }, { 0, 1, 3 } };
+  const Result needle = this->Read(this->Write("needle.ply", PlyBytes(far)));
+  EXPECT_EQ(needle.Triangles.size(), 1u) << "0.01 wide where the step is 0.125";
+  EXPECT_EQ(needle.Stats.DegenerateDropped, 1u);
+  far.Faces = { { 0, 1, 2 } };
+  this->ExpectError(this->Write("needle-only.ply", PlyBytes(far)), "empty mesh (no triangles: all 1 are degenerate)");
 }
 
 TEST_F(TriangleSources, BoundaryFlagsMarkTheRightEdges)
