@@ -5,6 +5,7 @@
 #include "atpResidentPages.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <vector>
 
@@ -213,10 +214,16 @@ void MeshTriangleSource::FirstPass()
     });
   if (this->KeptTriangles == 0)
   {
+    // Coordinates far larger than the mesh's detail are the usual cause: say what precision
+    // the model keeps.
+    char precision[160];
+    std::snprintf(precision, sizeof(precision),
+      "; coordinates are kept as 32-bit floats on a grid of step %g, the float spacing at the "
+      "largest coordinate", this->Grid.Step);
     throw InputError(this->Path + ": empty mesh (no triangles: " +
       (this->Statistics.FacesRead == 0
           ? std::string("the file has no faces")
-          : "all " + std::to_string(this->Statistics.DegenerateDropped) + " are degenerate") +
+          : "all " + std::to_string(this->Statistics.DegenerateDropped) + " are degenerate" + precision) +
       ")");
   }
   this->Mesh->Rewind();

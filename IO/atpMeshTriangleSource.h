@@ -62,7 +62,7 @@ private:
   std::unique_ptr<PolygonMesh> Mesh;
   VertexView Vertices;
   Box VertexBounds;
-  QuantizationGrid Grid; ///< the model's, once the bounds are known
+  QuantizationGrid Grid{}; ///< the model's, once the bounds are known
   BoundarySketch Sketch;
   std::shared_ptr<BoundaryEdgeCheck> Check = std::make_shared<BoundaryEdgeCheck>();
   ScratchArray<std::array<float, 3>> NormalSums;

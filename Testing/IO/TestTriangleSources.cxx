@@ -1055,7 +1055,9 @@ TEST_F(TriangleSources, ThinnerThanTheModelsGridIsDegenerate)
   EXPECT_EQ(needle.Triangles.size(), 1u) << "0.01 wide where the step is 0.125";
   EXPECT_EQ(needle.Stats.DegenerateDropped, 1u);
   far.Faces = { { 0, 1, 2 } };
-  this->ExpectError(this->Write("needle-only.ply", PlyBytes(far)), "empty mesh (no triangles: all 1 are degenerate)");
+  this->ExpectError(this->Write("needle-only.ply", PlyBytes(far)),
+    "empty mesh (no triangles: all 1 are degenerate; coordinates are kept as 32-bit floats on a "
+    "grid of step 0.125, the float spacing at the largest coordinate)");
 }
 
 TEST_F(TriangleSources, BoundaryFlagsMarkTheRightEdges)
@@ -1238,7 +1240,7 @@ TEST_F(TriangleSources, EmptyMeshes)
   degenerate.Points = { { 0, 0, 0 }, { 1, 1, 1 }, { 2, 2, 2 } };
   degenerate.Faces = { { 0, 1, 2 }, { 0, 0, 1 } };
   this->ExpectError(this->Write("flat.ply", PlyBytes(degenerate)),
-    "empty mesh (no triangles: all 2 are degenerate)");
+    "empty mesh (no triangles: all 2 are degenerate; coordinates are kept as 32-bit floats");
   this->ExpectError(this->Write("empty.obj", "# nothing\n"), "empty mesh (no triangles");
   this->ExpectError(
     this->Write("empty.stl", BinaryStlBytes(Mesh(), "binary")), "empty mesh (no triangles");
