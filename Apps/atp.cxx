@@ -251,7 +251,7 @@ int Build(int argc, char** argv, atp::MpiJobRunner* workers)
   std::printf("buckets: %.1f MiB written to scratch, %.1f MiB read back, scratch peak %.1f MiB\n",
     double(p.Buckets.BytesWritten) / (1 << 20), double(p.Buckets.BytesRead) / (1 << 20),
     double(p.Buckets.PeakScratchBytes) / (1 << 20));
-  std::printf("simplify: %llu diamonds, %s collapses, %s closed pieces removed, %llu diamonds over quota "
+  std::printf("simplify: %llu diamonds, %s collapses, %s pieces removed whole, %llu diamonds over quota "
               "(%s triangles over), %llu simplified patches over the budget, coarsest error %.3g, %.2fs\n",
     static_cast<unsigned long long>(c.Diamonds), FormatCount(double(c.Collapses)).c_str(),
     FormatCount(double(c.PiecesRemoved)).c_str(), static_cast<unsigned long long>(c.QuotaMisses),

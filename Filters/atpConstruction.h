@@ -60,7 +60,8 @@ struct ConstructionStats
   /// kept, not fatal).
   std::uint64_t QuotaMisses = 0;
   std::uint64_t TrianglesOverQuotas = 0; ///< above the diamonds' quotas, summed
-  /// Closed pieces (an isosurface's specks) removed whole where no collapse was left (Simplify).
+  /// Pieces (an isosurface's specks, separate triangles) removed whole where no collapse was
+  /// left (Simplify).
   std::uint64_t PiecesRemoved = 0;
   /// Copies of an input triangle dropped from its leaf (WeldSoup); the model's InputTriangles
   /// leaves them out.

@@ -77,7 +77,7 @@ struct PatchJobResult
   std::uint64_t Collapses = 0;
   /// Triangles above the diamond's quotas (QuotasOf): see SimplifyResult.
   std::uint64_t TrianglesOverQuotas = 0;
-  std::uint64_t PiecesRemoved = 0; ///< closed pieces removed whole: see Simplify
+  std::uint64_t PiecesRemoved = 0; ///< pieces removed whole: see Simplify
   /// A leaf's copies of a triangle (the same corners in the same order) it dropped: see WeldSoup.
   std::uint64_t RepeatedTrianglesDropped = 0;
   JobCpuSeconds Cpu;

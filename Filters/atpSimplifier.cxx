@@ -176,10 +176,11 @@ std::uint32_t StartRuns(Runs& runs)
   return start;
 }
 
-/// A closed piece of the mesh (a connected component whose vertices are all Free: no open edge,
-/// no locked or non-manifold vertex), which collapses cannot take below a tetrahedron. An
+/// A piece of the mesh wholly inside the diamond (a connected component with no locked vertex:
+/// none on the external border, on a non-manifold edge or fan), closed or open only along the
+/// input's boundary, which collapses cannot take below a tetrahedron or a lone triangle. An
 /// isosurface's specks end as such: the brain's coarsest diamond held 579 of them, 2,316
-/// triangles for a quota of 3,271.
+/// triangles for a quota of 3,271; so does a "sand" of separate triangles.
 struct Piece
 {
   double Radius2 = 0;         ///< half its box's diagonal, squared: no vertex is farther from Center
@@ -279,9 +280,9 @@ private:
   void Queue(std::uint32_t u, const Candidate& candidate);
   /// Sum over regions of max(0, count - quota), plus max(0, Total - TotalQuota).
   std::int64_t ExcessOverQuotas() const;
-  /// Finds the closed pieces (Piece), smallest first.
+  /// Finds the pieces (Piece), smallest first.
   void FindPieces();
-  /// Removes the smallest closed piece with a triangle in a region over quota, its vertices
+  /// Removes the smallest piece with a triangle in a region over quota, its vertices
   /// counted as moved to its center; false when there is none. Unless anySize, only a piece
   /// within the deviation the collapses made so far: its removal leaves the error as it is.
   bool RemoveSmallestPiece(bool anySize);
@@ -1348,13 +1349,16 @@ void Simplifier::FindPieces()
       root[std::max(a, b)] = std::min(a, b);
     }
   }
-  // A component whose vertices are all Free (none locked, none on an open edge) is closed.
+  // A component none of whose vertices is locked (on the diamond's external border, or on a
+  // non-manifold edge or fan) lies wholly inside the diamond: closed, or open only along the
+  // input's own boundary.
   std::vector<std::uint8_t> closed(VertexCount, 1);
   for (std::uint32_t t = 0; t < TriangleCount; ++t)
   {
     for (int k = 0; k < 3 && live(t); ++k)
     {
-      closed[find(Faces[t].V[k])] &= std::uint8_t(Kind[Faces[t].V[k]] == VertexKind::Free);
+      const VertexKind kind = Kind[Faces[t].V[k]];
+      closed[find(Faces[t].V[k])] &= std::uint8_t(kind == VertexKind::Free || kind == VertexKind::Boundary);
     }
   }
   std::vector<std::uint32_t> pieceOfRoot(VertexCount, None);
@@ -1517,7 +1521,7 @@ SimplifyResult Simplifier::Run()
         }
         continue;
       }
-      // A closed piece within the error made so far goes before the guard relaxes: it costs no
+      // A piece within the error made so far goes before the guard relaxes: it costs no
       // error, where a fin or a face against the surface shows and is not measured. Larger ones
       // go only when nothing else is left: their removal enters the error, so the cut refines
       // before it can show.

@@ -57,7 +57,7 @@ struct SimplifyResult
   /// vertices count as moved to the center of its box. 0 when nothing collapsed or went.
   double Error = 0;
   std::size_t Collapses = 0;
-  /// Closed pieces removed whole (see Simplify).
+  /// Pieces removed whole (see Simplify).
   std::size_t PiecesRemoved = 0;
   /// Triangles above the quotas, summed over the regions that end over theirs, plus those
   /// above the total quota: locked or topologically constrained geometry can keep some.
@@ -74,9 +74,10 @@ struct SimplifyResult
 /// breaks manifoldness (link condition). None turns a moved face more than about 80 degrees from
 /// the normal of the moved vertex's fan (the sum of its faces' area vectors) unless a region
 /// cannot meet its quota otherwise, nor against it unless a region cannot meet its quota even
-/// then. When no legal collapse is left for the regions over their quotas, closed pieces
-/// (connected components with no open edge and no vertex that may not move, such as the
-/// tetrahedra an isosurface's specks end as) with a triangle in such a region are removed whole,
+/// then. When no legal collapse is left for the regions over their quotas, pieces (connected
+/// components with no vertex that may not move, closed like the tetrahedra an isosurface's
+/// specks end as, or open only along the input's boundary like a lone triangle of a "sand")
+/// with a triangle in such a region are removed whole,
 /// smallest box first: before that guard relaxes, those whose box's half-diagonal is within the
 /// error made so far; once it is off, any.
 /// Deterministic and reentrant: concurrent calls on different meshes are safe. regionOf is

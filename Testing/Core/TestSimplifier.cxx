@@ -1211,12 +1211,18 @@ TEST(Simplifier, ClosedPiecesGoWholeSmallestFirst)
     EXPECT_EQ(kept.count(KeyOf(mesh, v)), inSmallest ? 0u : 1u) << "vertex " << v;
   }
 
-  // Out of reach: every tetrahedron goes; the strip and the lone triangle stay.
+  // Out of reach: every tetrahedron goes, then the lone triangle, open only along the input's
+  // boundary (its box is the largest); the strip, on the external border, stays.
   const SimplifyResult all = Simplify(mesh, 1, OneRegion(), { 1 });
-  EXPECT_EQ(all.PiecesRemoved, 6u);
-  EXPECT_EQ(TriangleTotal(all), 101u);
-  EXPECT_EQ(all.TrianglesOverQuotas, 100u);
-  EXPECT_NEAR(all.Error, 0.6 * std::sqrt(3.0) / 2, 1e-6);
+  EXPECT_EQ(all.PiecesRemoved, 7u);
+  EXPECT_EQ(TriangleTotal(all), 100u);
+  EXPECT_EQ(all.TrianglesOverQuotas, 99u);
+  EXPECT_NEAR(all.Error, std::sqrt(2.0) / 2, 1e-6);
+
+  // A piece with a vertex on the external border is no piece to remove: the lone triangle with
+  // one edge not of the input's boundary (so locked) stays.
+  mesh.BoundaryEdges.back() = 6;
+  EXPECT_EQ(Simplify(mesh, 1, OneRegion(), { 1 }).PiecesRemoved, 6u);
 }
 
 // A piece no larger than the deviation the collapses already made goes before a face may turn
