@@ -10,6 +10,11 @@ BoundarySketch::BoundarySketch(std::uint64_t vertexCount, const std::string& scr
 {
 }
 
+void BoundarySketch::ReleaseResidentPages(std::uint64_t first, std::uint64_t count) const
+{
+  atp::ReleaseResidentPages(this->Entries.Data() + first, count * sizeof(Entry));
+}
+
 void BoundarySketch::ReleaseResidentPages() const
 {
   atp::ReleaseResidentPages(this->Entries.Data(), this->Entries.Size() * sizeof(Entry));

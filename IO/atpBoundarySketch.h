@@ -48,8 +48,10 @@ public:
     return this->Entries[u].NeighbourXor != 0 || this->Entries[u].HashXor != 0;
   }
 
-  /// Lets the sketch's pages leave resident memory (they stay in its scratch file).
+  /// Lets the sketch's pages leave resident memory (they stay in its scratch file): all of
+  /// them, or those of vertices [first, first + count).
   void ReleaseResidentPages() const;
+  void ReleaseResidentPages(std::uint64_t first, std::uint64_t count) const;
 
 private:
   struct Entry

@@ -232,9 +232,20 @@ void MeshTriangleSource::FirstPass()
 
 void MeshTriangleSource::CollectOpenEdgeEnds()
 {
+  // The scan reads the whole sketch (and, for an unwelded mesh, every vertex): it lets go of
+  // what it has read a few MiB at a time, or that would add to the peak of what opening holds.
+  constexpr std::uint64_t Interval = std::uint64_t(1) << 18;
   for (std::uint64_t i = 0; i < this->Vertices.Count; ++i)
   {
-    this->BoundResidentMemory();
+    if (i % Interval == 0 && i > 0)
+    {
+      this->Sketch.ReleaseResidentPages(i - Interval, Interval);
+      if (this->Vertices.FileBacked)
+      {
+        ReleaseResidentPages(this->Vertices.Base + (i - Interval) * this->Vertices.Stride,
+          Interval * this->Vertices.Stride);
+      }
+    }
     if (this->Sketch.OnOpenEdge(std::uint32_t(i)))
     {
       float p[3];
