@@ -144,7 +144,7 @@ void BoundaryEdgeCheck::Count(const float a[3], const float b[3])
   }
 }
 
-int BoundaryEdgeCheck::Uses(const float a[3], const float b[3]) const
+int BoundaryEdgeCheck::TimesUsed(const float a[3], const float b[3]) const
 {
   if (this->Edges.Keys.empty())
   {
@@ -166,7 +166,7 @@ void BoundaryEdgeCheck::Apply(SoupTriangle* triangles, std::size_t count) const
       {
         continue;
       }
-      const int uses = this->Uses(triangle.V[c], triangle.V[(c + 1) % 3]);
+      const int uses = this->TimesUsed(triangle.V[c], triangle.V[(c + 1) % 3]);
       if (uses != 1)
       {
         triangle.BoundaryEdges &= std::uint8_t(~bit);

@@ -74,7 +74,7 @@ private:
 
   void Overflow();
   /// How many times the edge was counted: 0 (never), 1, 2, or 3 for three or more.
-  int Uses(const float a[3], const float b[3]) const;
+  int TimesUsed(const float a[3], const float b[3]) const;
 
   std::size_t MaxEdges;
   bool TooMany = false;
