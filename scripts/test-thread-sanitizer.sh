@@ -12,7 +12,9 @@ fi
 cmake --build "$build_dir" -j "$(nproc)" --target TestParallel TestTriangleSources TestPartitioner TestConstruction TestPatchJob TestRenderingCore TestMapper
 export TSAN_OPTIONS="halt_on_error=1 abort_on_error=1 suppressions=$PWD/Testing/tsan.supp"
 "$build_dir/tests/TestParallel"
-"$build_dir/tests/TestTriangleSources"
+# Bounds on the process's peak memory mean nothing here: ThreadSanitizer's shadow memory
+# multiplies every page a test reads (opening 12M vertices reads 96 MiB of boundary sketch).
+"$build_dir/tests/TestTriangleSources" --gtest_filter='-*OpeningLetsGoOfTheVertexPagesItHasRead'
 "$build_dir/tests/TestPartitioner" --gtest_filter='*Stream*'
 "$build_dir/tests/TestConstruction" --gtest_filter='*ThreadCount*'
 "$build_dir/tests/TestPatchJob" --gtest_filter='*Loaded*'
