@@ -88,7 +88,8 @@ private:
 /// Welded as MergePatches welds (the first corner at a position gives its normal and color, and
 /// triangles the weld makes degenerate go), straight from the soup: a normal is decoded once per
 /// vertex rather than once per corner. A triangle with the corners of a kept one in the same
-/// order is a copy and goes too: a leaf holds every copy (they share a centroid), and inside a
+/// order is a copy and goes too: a leaf holds every copy (they share a centroid, but for the
+/// rounding of corners apart in magnitude by over 2^29, which can part rotated copies), and inside a
 /// patch the copies hide that another patch shares their edges, whose ends would then move
 /// there and not in the other patch, a crack. Their number is added to `repeated`.
 PatchMesh WeldSoup(const std::vector<SoupTriangle>& soup, bool colors, std::uint64_t& repeated)

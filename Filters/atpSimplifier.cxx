@@ -1221,7 +1221,8 @@ std::int64_t Simplifier::ExcessChange(std::uint32_t u, std::uint32_t v)
 // The removed triangle t = (u, v, w): its edges v-w and w-u become one. When exactly one of them
 // was open, the survivor carries that edge's boundary bit. An input edge of three or more
 // triangles on v-w (u moves, so w-u is none) stays marked on the triangle across w-u, which
-// takes its place: another patch may still hold the edge, and the next level must lock it too.
+// takes its place, or else on the one across v-w: another patch may still hold the edge, and
+// the next level must lock it too.
 void Simplifier::FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, std::uint32_t w)
 {
   const bool openVW = Faces[t].Bits & (1u << EdgeBit(t, v, w));
@@ -1250,9 +1251,13 @@ void Simplifier::FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, 
   {
     Faces[acrossWU].Bits |= std::uint8_t(1u << EdgeBit(acrossWU, u, w));
   }
-  if (acrossWU != None && manySheetsVW)
+  if (manySheetsVW && acrossWU != None)
   {
     Faces[acrossWU].Bits |= std::uint8_t(8u << EdgeBit(acrossWU, u, w));
+  }
+  else if (manySheetsVW && acrossVW != None)
+  {
+    Faces[acrossVW].Bits |= std::uint8_t(8u << EdgeBit(acrossVW, v, w)); // the edge's other side
   }
   if (acrossVW != None && acrossWU == None && openWU)
   {

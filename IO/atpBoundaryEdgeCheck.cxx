@@ -73,7 +73,7 @@ bool BoundaryEdgeCheck::Table::Holds(std::uint64_t key) const
   return !this->Keys.empty() && this->Keys[this->Slot(key)] == key;
 }
 
-bool BoundaryEdgeCheck::Table::Add(std::uint64_t key, std::size_t max)
+bool BoundaryEdgeCheck::Table::Add(std::uint64_t key, std::size_t max, std::uint8_t flags)
 {
   if (2 * (this->Count + 1) > this->Keys.size() && this->Count < max)
   {
@@ -102,13 +102,9 @@ bool BoundaryEdgeCheck::Table::Add(std::uint64_t key, std::size_t max)
     this->Keys[slot] = key;
     ++this->Count;
   }
-  this->Uses[slot] = std::uint8_t(std::min(3, this->Uses[slot] + 1));
+  const int uses = std::min(int(UseCount), (this->Uses[slot] & UseCount) + 1);
+  this->Uses[slot] = std::uint8_t((this->Uses[slot] & ~UseCount) | uses | flags);
   return true;
-}
-
-std::uint64_t BoundaryEdgeCheck::Table::KeysUsed(std::uint8_t uses) const
-{
-  return std::uint64_t(std::count(this->Uses.begin(), this->Uses.end(), uses));
 }
 
 BoundaryEdgeCheck::BoundaryEdgeCheck(std::size_t maxEdges)
@@ -136,9 +132,9 @@ bool BoundaryEdgeCheck::IsEndPosition(const float p[3]) const
   return this->Ends.Holds(PositionKey(p));
 }
 
-void BoundaryEdgeCheck::Count(const float a[3], const float b[3])
+void BoundaryEdgeCheck::Count(const float a[3], const float b[3], bool open)
 {
-  if (!this->TooMany && !this->Edges.Add(EdgeKey(a, b), this->MaxEdges))
+  if (!this->TooMany && !this->Edges.Add(EdgeKey(a, b), this->MaxEdges, open ? OpenBit : 0))
   {
     this->Overflow();
   }
@@ -151,7 +147,7 @@ int BoundaryEdgeCheck::TimesUsed(const float a[3], const float b[3]) const
     return 0;
   }
   const std::size_t slot = this->Edges.Slot(EdgeKey(a, b));
-  return this->Edges.Keys[slot] != 0 ? this->Edges.Uses[slot] : 0;
+  return this->Edges.Keys[slot] != 0 ? this->Edges.Uses[slot] & UseCount : 0;
 }
 
 void BoundaryEdgeCheck::Apply(SoupTriangle* triangles, std::size_t count) const
@@ -159,13 +155,19 @@ void BoundaryEdgeCheck::Apply(SoupTriangle* triangles, std::size_t count) const
   for (std::size_t t = 0; t < count; ++t)
   {
     SoupTriangle& triangle = triangles[t];
+    if (this->TooMany)
+    {
+      triangle.BoundaryEdges &= std::uint8_t(~(7u | CountedBit)); // counting stopped part way
+      continue;
+    }
+    if (!(triangle.BoundaryEdges & CountedBit))
+    {
+      continue; // no edge counted: none flagged either (a flagged edge joins two end positions)
+    }
+    triangle.BoundaryEdges &= std::uint8_t(~CountedBit);
     for (int c = 0; c < 3; ++c)
     {
       const std::uint8_t bit = std::uint8_t(1u << c);
-      if (!(triangle.BoundaryEdges & bit))
-      {
-        continue;
-      }
       const int uses = this->TimesUsed(triangle.V[c], triangle.V[(c + 1) % 3]);
       if (uses != 1)
       {
@@ -181,12 +183,14 @@ void BoundaryEdgeCheck::Apply(SoupTriangle* triangles, std::size_t count) const
 
 std::uint64_t BoundaryEdgeCheck::EdgesUsedOnce() const
 {
-  return this->Edges.KeysUsed(1);
+  return std::uint64_t(std::count_if(this->Edges.Uses.begin(), this->Edges.Uses.end(),
+    [](std::uint8_t uses) { return (uses & UseCount) == 1; }));
 }
 
 std::uint64_t BoundaryEdgeCheck::EdgesShared() const
 {
-  return this->Edges.KeysUsed(2) + this->Edges.KeysUsed(3);
+  return std::uint64_t(std::count_if(this->Edges.Uses.begin(), this->Edges.Uses.end(),
+    [](std::uint8_t uses) { return (uses & OpenBit) && (uses & UseCount) >= 2; }));
 }
 
 } // namespace atp

@@ -28,9 +28,10 @@ namespace atp
 class VTKATPIO_EXPORT BoundaryEdgeCheck
 {
 public:
-  /// Edges, and end positions, the check holds at most (18 bytes each at most: 144 MiB each): a
-  /// welded mesh's boundary takes a sliver of it; an unwelded soup of over about 5M triangles
-  /// overflows it.
+  /// Edges, and end positions, the check holds at most: 9 bytes a slot, at most two slots each,
+  /// so up to 144 MiB per table, and 216 MiB while the full table grows into its last size (the
+  /// end positions go once the input is read). A welded mesh's boundary takes a sliver of it;
+  /// an unwelded soup of over about 3M triangles overflows it.
   static constexpr std::size_t DefaultMaxEdges = std::size_t(1) << 23;
 
   explicit BoundaryEdgeCheck(std::size_t maxEdges = DefaultMaxEdges);
@@ -39,19 +40,28 @@ public:
   void AddEndPosition(const float p[3]);
   bool HasEndPositions() const { return this->Ends.Count > 0; }
   bool IsEndPosition(const float p[3]) const;
+  /// Once the input is read: the end positions are no longer needed.
+  void DropEndPositions() { this->Ends = Table(); }
 
-  /// One use of the edge between the positions a and b, in either direction. Past maxEdges
-  /// distinct edges (or end positions) the tables are dropped and no edge is a boundary edge
-  /// any more (all are locked: no crack, only less simplification along the true boundary).
-  void Count(const float a[3], const float b[3]);
+  /// Bit 6 of SoupTriangle::BoundaryEdges: an edge of the triangle was counted.
+  static constexpr std::uint8_t CountedBit = 64;
 
-  /// Clears the BoundaryEdges bits of the triangles' edges that are not used exactly once, and
-  /// marks those used three times or more as edges whose ends never move (bit 3 + i).
+  /// One use of the edge between the positions a and b, in either direction; `open` when the
+  /// sketch flagged this use. Past maxEdges distinct edges (or end positions) the tables are
+  /// dropped and no edge is a boundary edge any more (all are locked: no crack, only less
+  /// simplification along the true boundary; edges of three or more sheets are then not
+  /// marked).
+  void Count(const float a[3], const float b[3], bool open);
+
+  /// For the triangles with an edge counted (CountedBit): clears the BoundaryEdges bits of the
+  /// edges not used exactly once, and marks those used three times or more as edges whose ends
+  /// never move (bit 3 + i), flagged by the sketch or not (a vertex where the boundary pinches
+  /// fails the sketch's test). Clears CountedBit.
   void Apply(SoupTriangle* triangles, std::size_t count) const;
 
   /// Distinct edges counted once: the input's boundary edges by position.
   std::uint64_t EdgesUsedOnce() const;
-  /// Distinct edges counted more than once.
+  /// Distinct edges the sketch flagged that more than one triangle uses.
   std::uint64_t EdgesShared() const;
   bool Overflowed() const { return this->TooMany; }
 
@@ -62,17 +72,19 @@ private:
   struct Table
   {
     std::vector<std::uint64_t> Keys;
-    std::vector<std::uint8_t> Uses; ///< 1, 2, or 3 for "three times or more"
+    /// Low bits: 1, 2, or 3 for "three times or more"; OpenBit: a use was flagged open.
+    std::vector<std::uint8_t> Uses;
     std::size_t Count = 0;
 
     std::size_t Slot(std::uint64_t key) const;
     bool Holds(std::uint64_t key) const;
-    /// One more use of `key`; false (nothing added) when it is new and `max` keys are held.
-    bool Add(std::uint64_t key, std::size_t max);
-    std::uint64_t KeysUsed(std::uint8_t uses) const;
+    /// One more use of `key` (`flags` or'ed in); false (nothing added) when it is new and `max`
+    /// keys are held.
+    bool Add(std::uint64_t key, std::size_t max, std::uint8_t flags = 0);
   };
 
   void Overflow();
+  static constexpr std::uint8_t UseCount = 3, OpenBit = 128;
   /// How many times the edge was counted: 0 (never), 1, 2, or 3 for three or more.
   int TimesUsed(const float a[3], const float b[3]) const;
 

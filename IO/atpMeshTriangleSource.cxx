@@ -255,7 +255,7 @@ void MeshTriangleSource::CollectOpenEdgeEnds()
   }
 }
 
-void MeshTriangleSource::CountEdgesBetweenEnds(const SoupTriangle& soup)
+void MeshTriangleSource::CountEdgesBetweenEnds(SoupTriangle& soup)
 {
   bool end[3];
   for (int c = 0; c < 3; ++c)
@@ -266,7 +266,8 @@ void MeshTriangleSource::CountEdgesBetweenEnds(const SoupTriangle& soup)
   {
     if (end[c] && end[(c + 1) % 3])
     {
-      this->Check->Count(soup.V[c], soup.V[(c + 1) % 3]);
+      this->Check->Count(soup.V[c], soup.V[(c + 1) % 3], soup.BoundaryEdges & (1u << c));
+      soup.BoundaryEdges |= BoundaryEdgeCheck::CountedBit;
     }
   }
 }
@@ -328,6 +329,7 @@ void MeshTriangleSource::FinishBoundaryCheck()
   this->Statistics.BoundaryEdges = this->Check->EdgesUsedOnce();
   this->Statistics.SharedOpenEdges = this->Check->EdgesShared();
   this->Statistics.BoundaryUnchecked = this->Check->Overflowed();
+  this->Check->DropEndPositions();
 }
 
 bool MeshTriangleSource::StartNextBatch()

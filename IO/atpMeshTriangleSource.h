@@ -40,8 +40,9 @@ private:
   void FirstPass();
   /// Gives the check the positions of the vertices on edges the sketch found open.
   void CollectOpenEdgeEnds();
-  /// Counts the triangle's edges between two such positions in the check.
-  void CountEdgesBetweenEnds(const SoupTriangle& soup);
+  /// Counts the triangle's edges between two such positions in the check, and marks the
+  /// triangle (BoundaryEdgeCheck::CountedBit) when it has one.
+  void CountEdgesBetweenEnds(SoupTriangle& soup);
   void SetCornerNormals(const std::uint32_t triangle[3], SoupTriangle& soup) const;
   void SetCornerColors(const std::uint32_t triangle[3], SoupTriangle& soup) const;
   /// Gets the corner positions; false for a degenerate triangle, also one the model's grid

@@ -27,8 +27,10 @@ vtkSmartPointer<vtkAOSDataArrayTemplate<unsigned char>> FindColors(vtkPolyData* 
   {
     return nullptr;
   }
+  const vtkIdType points = mesh->GetNumberOfPoints();
   auto* scalars = vtkArrayDownCast<vtkAOSDataArrayTemplate<unsigned char>>(data->GetScalars());
-  if (scalars && (scalars->GetNumberOfComponents() == 3 || scalars->GetNumberOfComponents() == 4))
+  if (scalars && (scalars->GetNumberOfComponents() == 3 || scalars->GetNumberOfComponents() == 4) &&
+    scalars->GetNumberOfTuples() == points)
   {
     return scalars;
   }
@@ -44,6 +46,11 @@ vtkSmartPointer<vtkAOSDataArrayTemplate<unsigned char>> FindColors(vtkPolyData* 
     {
       throw InputError(name + ": the point array " + colorName + " has " + std::to_string(components) +
         " components; colors have 3 (RGB) or 4 (RGBA)");
+    }
+    if (array->GetNumberOfTuples() != points)
+    {
+      throw InputError(name + ": the point array " + colorName + " has " +
+        std::to_string(array->GetNumberOfTuples()) + " tuples for " + std::to_string(points) + " points");
     }
     if (auto* bytes = vtkArrayDownCast<vtkAOSDataArrayTemplate<unsigned char>>(array))
     {

@@ -20,7 +20,7 @@ namespace atp
 /// colors are (reals: fractions of 1; unsigned shorts: of 65535; other integers: of 255).
 /// `name` stands for the mesh in error messages. The source keeps a reference to `mesh`.
 /// Throws InputError (no points, no triangles, non-finite coordinates, too many points, an array
-/// named as colors of another number of components).
+/// named as colors of another number of components or tuples than the points).
 VTKATPIO_EXPORT std::unique_ptr<TriangleSource> OpenPolyDataTriangleSource(
   vtkPolyData* mesh, const std::string& name, const std::string& scratchDirectory = "");
 

@@ -43,7 +43,8 @@ struct SoupTriangle
   /// Bit i set: the edge from corner i to corner (i+1)%3 is a boundary edge of the input mesh
   /// (used by exactly one triangle). Simplification must know these (paper, section 5.2).
   /// Bit 3 + i set: that edge is used by three or more triangles (BoundaryEdgeCheck): its ends
-  /// never move, since a patch holding two of them would take it for an inner edge.
+  /// never move, since a patch holding two of them would take it for an inner edge. Bit 6, from
+  /// reading until the check is applied: an edge of the triangle was counted by the check.
   std::uint8_t BoundaryEdges;
   std::uint8_t Padding[3];
   /// Corner colors, RGBA; opaque white when the input has none (the bytes stay deterministic).
