@@ -91,10 +91,9 @@ void MeshTriangleSource::CheckVerticesAndBound()
   // all of it would stay resident (648 MiB for the 108M-triangle torus, the build's peak).
   for (std::uint64_t i = 0; i < this->Vertices.Count; ++i)
   {
-    if (this->Vertices.FileBacked && i % ReleaseInterval == 0 && i > 0)
+    if (i % ReleaseInterval == 0 && i > 0)
     {
-      ReleaseResidentPages(this->Vertices.Base + (i - ReleaseInterval) * this->Vertices.Stride,
-        ReleaseInterval * this->Vertices.Stride);
+      this->ReleaseVertexPages(i - ReleaseInterval, ReleaseInterval);
     }
     float p[3];
     this->Vertices.Get(static_cast<std::uint32_t>(i), p);
@@ -104,6 +103,14 @@ void MeshTriangleSource::CheckVerticesAndBound()
         " has a non-finite coordinate (" + bad + ")");
     }
     this->VertexBounds.Add(p);
+  }
+}
+
+void MeshTriangleSource::ReleaseVertexPages(std::uint64_t first, std::uint64_t count) const
+{
+  if (this->Vertices.FileBacked)
+  {
+    ReleaseResidentPages(this->Vertices.Base + first * this->Vertices.Stride, count * this->Vertices.Stride);
   }
 }
 
@@ -240,11 +247,7 @@ void MeshTriangleSource::CollectOpenEdgeEnds()
     if (i % Interval == 0 && i > 0)
     {
       this->Sketch.ReleaseResidentPages(i - Interval, Interval);
-      if (this->Vertices.FileBacked)
-      {
-        ReleaseResidentPages(this->Vertices.Base + (i - Interval) * this->Vertices.Stride,
-          Interval * this->Vertices.Stride);
-      }
+      this->ReleaseVertexPages(i - Interval, Interval);
     }
     if (this->Sketch.OnOpenEdge(std::uint32_t(i)))
     {

@@ -36,6 +36,9 @@ public:
 
 private:
   void CheckVerticesAndBound();
+  /// Lets the pages of vertices [first, first + count) that a scan has read leave resident
+  /// memory, when the vertex array is a file's mapping.
+  void ReleaseVertexPages(std::uint64_t first, std::uint64_t count) const;
   /// The first pass: boundary sketch and area-weighted vertex normal sums.
   void FirstPass();
   /// Gives the check the positions of the vertices on edges the sketch found open.
