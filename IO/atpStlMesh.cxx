@@ -1,14 +1,17 @@
 #include "atpStlMesh.h"
 
 #include "atpBufferedReader.h"
-#include "atpInMemoryMesh.h"
 #include "atpInputFile.h"
+#include "atpPositionWelder.h"
+#include "atpResidentPages.h"
+#include "atpScratchArray.h"
 #include "atpTextParsing.h"
 
 #include <algorithm>
-#include <array>
 #include <cstring>
-#include <unordered_map>
+#include <numeric>
+#include <stdexcept>
+#include <vector>
 
 namespace atp
 {
@@ -16,55 +19,105 @@ namespace
 {
 constexpr std::uint64_t HeaderBytes = 84; // 80-byte header, uint32 triangle count
 constexpr std::uint64_t RecordBytes = 50; // normal, 3 corners, uint16 attribute
+/// The fewest bytes an ASCII corner takes ("vertex 0 0 0" and its share of the facet's lines):
+/// sizes the welder's buckets from the file's size.
+constexpr std::uint64_t LeastAsciiCornerBytes = 20;
 
-/// Gives each distinct position one vertex index.
-class Welder
+/// The welded soup, in scratch arrays whose pages leave the process as the faces stream by.
+class StlMesh final : public PolygonMesh
 {
 public:
-  Welder(const InputFile& file, InMemoryMesh& mesh)
-    : File(file)
-    , Mesh(mesh)
+  StlMesh(PositionWelder::Mesh welded, std::uint64_t faces, ScratchArray<std::uint32_t> sizes)
+    : Welded(std::move(welded))
+    , Faces(faces)
+    , Sizes(std::move(sizes))
+    , AllTriangles(this->Sizes.Size() == 0)
   {
+    if (this->AllTriangles)
+    {
+      this->Threes.assign(PolygonBatchFaces, 3);
+    }
   }
 
-  std::uint32_t Add(const float p[3])
+  VertexView Vertices() const override
   {
-    Key key;
-    for (int a = 0; a < 3; ++a)
+    VertexView view;
+    view.Base = reinterpret_cast<const unsigned char*>(this->Welded.Positions.Data());
+    view.Count = this->Welded.VertexCount;
+    view.FileBacked = true;
+    return view;
+  }
+
+  void Rewind() override
+  {
+    this->ReleaseBatch();
+    this->NextFace = 0;
+    this->NextCorner = 0;
+  }
+
+  bool NextBatch(PolygonBatch& batch) override
+  {
+    this->ReleaseBatch();
+    if (this->NextFace == this->Faces)
     {
-      const float x = p[a] + 0.0f; // -0 and +0 are the same position
-      std::memcpy(&key[a], &x, sizeof(float));
+      return false;
     }
-    if (this->Index.size() == MaxVertices)
+    const std::size_t count =
+      static_cast<std::size_t>(std::min<std::uint64_t>(PolygonBatchFaces, this->Faces - this->NextFace));
+    batch.Indices = this->Welded.Indices.Data() + this->NextCorner;
+    batch.Sizes = this->AllTriangles ? this->Threes.data() : this->Sizes.Data() + this->NextFace;
+    batch.Count = count;
+    std::uint64_t corners = 3 * std::uint64_t(count);
+    if (!this->AllTriangles)
     {
-      this->File.Fail(
-        "too many distinct vertices (at most " + std::to_string(MaxVertices) + " are supported)");
+      corners = std::accumulate(batch.Sizes, batch.Sizes + count, std::uint64_t(0));
     }
-    auto inserted = this->Index.try_emplace(key, static_cast<std::uint32_t>(this->Index.size()));
-    if (inserted.second)
-    {
-      this->Mesh.Positions.insert(this->Mesh.Positions.end(), p, p + 3);
-    }
-    return inserted.first->second;
+    this->Batch = batch;
+    this->BatchCorners = corners;
+    this->NextFace += count;
+    this->NextCorner += corners;
+    return true;
   }
 
 private:
-  using Key = std::array<std::uint32_t, 3>;
-  struct KeyHash
+  /// The last batch handed out is no longer valid: its pages may leave the process.
+  void ReleaseBatch()
   {
-    std::size_t operator()(const Key& k) const
+    if (this->Batch.Count == 0)
     {
-      std::uint64_t h = k[0] * 0x9e3779b97f4a7c15ULL;
-      h = (h ^ k[1]) * 0xbf58476d1ce4e5b9ULL;
-      h = (h ^ k[2]) * 0x94d049bb133111ebULL;
-      return static_cast<std::size_t>(h ^ (h >> 31));
+      return;
     }
-  };
+    ReleaseResidentPages(this->Batch.Indices, this->BatchCorners * sizeof(std::uint32_t));
+    if (!this->AllTriangles)
+    {
+      ReleaseResidentPages(this->Batch.Sizes, this->Batch.Count * sizeof(std::uint32_t));
+    }
+    this->Batch = PolygonBatch();
+  }
 
-  const InputFile& File;
-  InMemoryMesh& Mesh;
-  std::unordered_map<Key, std::uint32_t, KeyHash> Index;
+  PositionWelder::Mesh Welded;
+  std::uint64_t Faces;
+  ScratchArray<std::uint32_t> Sizes; ///< corners per facet; empty when all are triangles
+  bool AllTriangles;
+  std::vector<std::uint32_t> Threes; ///< a batch's sizes when all are triangles
+  std::uint64_t NextFace = 0;
+  std::uint64_t NextCorner = 0;
+  PolygonBatch Batch;
+  std::uint64_t BatchCorners = 0;
 };
+
+/// Adds a corner to the welder; its limit becomes the file's error.
+void AddCorner(const InputFile& file, PositionWelder& welder, const float p[3])
+{
+  try
+  {
+    welder.Add(p);
+  }
+  catch (const std::length_error& e)
+  {
+    file.Fail(e.what());
+  }
+}
 
 /// ASCII STL starts with "solid" and is text; a binary header may start with "solid" too, but
 /// its count and float records soon contain bytes that text never does.
@@ -84,12 +137,16 @@ bool LooksLikeAscii(const InputFile& file)
     });
 }
 
-void ReadBinary(const InputFile& file, std::uint64_t count, InMemoryMesh& mesh)
+std::unique_ptr<PolygonMesh> ReadBinary(const InputFile& file, std::uint64_t count, const std::string& scratch)
 {
-  Welder welder(file, mesh);
+  PositionWelder welder(scratch, 3 * count);
+  // The welder numbers corners in 32 bits; past that, say so before reading gigabytes.
+  if (3 * count > PositionWelder::MaxCorners)
+  {
+    file.Fail("holds " + std::to_string(count) + " triangles; at most " +
+      std::to_string(PositionWelder::MaxCorners / 3) + " are supported");
+  }
   BufferedReader reader(file, HeaderBytes);
-  mesh.Indices.reserve(static_cast<std::size_t>(3 * count));
-  mesh.Sizes.assign(static_cast<std::size_t>(count), 3);
   for (std::uint64_t t = 0; t < count; ++t)
   {
     const unsigned char* record = reader.Take(RecordBytes); // size checked: never null
@@ -101,17 +158,21 @@ void ReadBinary(const InputFile& file, std::uint64_t count, InMemoryMesh& mesh)
       {
         file.Fail("triangle " + std::to_string(t) + " has a non-finite coordinate (" + bad + ")");
       }
-      mesh.Indices.push_back(welder.Add(p));
+      AddCorner(file, welder, p);
     }
   }
+  return std::make_unique<StlMesh>(welder.Finish(), count, ScratchArray<std::uint32_t>(scratch));
 }
 
-void ReadAscii(const InputFile& file, InMemoryMesh& mesh)
+std::unique_ptr<PolygonMesh> ReadAscii(const InputFile& file, const std::string& scratch)
 {
-  Welder welder(file, mesh);
+  PositionWelder welder(scratch, file.Size() / LeastAsciiCornerBytes);
+  ScratchArray<std::uint32_t> sizes(scratch);
+  std::uint64_t facets = 0;
+  bool allTriangles = true;
   BufferedReader reader(file, 0);
   std::string_view token;
-  std::vector<std::uint32_t> facet; // corners of the facet being read
+  std::uint32_t corners = 0; // of the facet being read
   bool inLoop = false;
   while (reader.NextToken(token))
   {
@@ -121,11 +182,15 @@ void ReadAscii(const InputFile& file, InMemoryMesh& mesh)
     }
     else if (token == "outer")
     {
-      facet.clear();
+      corners = 0;
       inLoop = true;
     }
     else if (token == "vertex")
     {
+      if (!inLoop)
+      {
+        file.FailAtLine(reader.Line(), "a vertex outside 'outer loop' ... 'endloop'");
+      }
       float p[3];
       for (float& x : p)
       {
@@ -145,12 +210,26 @@ void ReadAscii(const InputFile& file, InMemoryMesh& mesh)
       {
         file.FailAtLine(reader.Line(), std::string("non-finite coordinate (") + bad + ")");
       }
-      facet.push_back(welder.Add(p));
+      AddCorner(file, welder, p);
+      ++corners;
     }
     else if (token == "endloop")
     {
-      mesh.Indices.insert(mesh.Indices.end(), facet.begin(), facet.end());
-      mesh.Sizes.push_back(static_cast<std::uint32_t>(facet.size()));
+      if (!inLoop)
+      {
+        file.FailAtLine(reader.Line(), "'endloop' without 'outer loop'");
+      }
+      // Sizes are kept only once a facet is not a triangle (STL's are, by its definition).
+      if (allTriangles && corners != 3)
+      {
+        allTriangles = false;
+        sizes.Assign(static_cast<std::size_t>(facets), 3);
+      }
+      if (!allTriangles)
+      {
+        sizes.PushBack(corners);
+      }
+      ++facets;
       inLoop = false;
     }
   }
@@ -158,36 +237,32 @@ void ReadAscii(const InputFile& file, InMemoryMesh& mesh)
   {
     file.Fail("truncated: the file ends inside a facet");
   }
+  return std::make_unique<StlMesh>(welder.Finish(), facets, std::move(sizes));
 }
 } // namespace
 
-std::unique_ptr<PolygonMesh> OpenStlMesh(const std::string& path)
+std::unique_ptr<PolygonMesh> OpenStlMesh(const std::string& path, const std::string& scratchDirectory)
 {
   static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "binary STL is read in place");
   InputFile file(path);
-  auto mesh = std::make_unique<InMemoryMesh>();
   std::uint32_t count = 0;
   const bool hasCount = file.Size() >= HeaderBytes && file.ReadAt(80, &count, 4) == 4;
   // The exact size identifies a binary STL, even one whose header starts with "solid".
   if (hasCount && file.Size() == HeaderBytes + RecordBytes * count)
   {
-    ReadBinary(file, count, *mesh);
+    return ReadBinary(file, count, scratchDirectory);
   }
-  else if (LooksLikeAscii(file))
+  if (LooksLikeAscii(file))
   {
-    ReadAscii(file, *mesh);
+    return ReadAscii(file, scratchDirectory);
   }
-  else if (hasCount)
+  if (hasCount)
   {
     file.Fail("truncated or corrupt binary STL: the header claims " + std::to_string(count) +
       " triangles (" + std::to_string(HeaderBytes + RecordBytes * count) +
       " bytes) but the file has " + std::to_string(file.Size()) + " bytes");
   }
-  else
-  {
-    file.Fail("not an STL file: neither ASCII ('solid ...') nor long enough for a binary header");
-  }
-  return mesh;
+  file.Fail("not an STL file: neither ASCII ('solid ...') nor long enough for a binary header");
 }
 
 } // namespace atp

@@ -55,7 +55,7 @@ std::unique_ptr<TriangleSource> OpenTriangleSource(
   }
   else if (extension == ".stl")
   {
-    mesh = OpenStlMesh(path);
+    mesh = OpenStlMesh(path, scratchDirectory);
   }
   else if (extension == ".vtp")
   {
