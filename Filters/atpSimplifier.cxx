@@ -104,6 +104,14 @@ inline int PrevCorner(int k)
   return (0x12 >> (2 * k)) & 3; // 2, 0, 1
 }
 
+/// A triangle's BoundaryEdges bits once corners 1 and 2 swap (either way): edges 0-1, 1-2, 2-0
+/// become 0-2, 2-1, 1-0, so edge bits 0 and 2 trade places, as do the many-sheet bits 3 and 5.
+constexpr std::uint8_t FlippedBits(std::uint8_t bits)
+{
+  return std::uint8_t((bits & 0xD2) | ((bits & 0x01) << 2) | ((bits & 0x04) >> 2) |
+    ((bits & 0x08) << 2) | ((bits & 0x20) >> 2));
+}
+
 inline void Sub(const double* a, const double* b, double* out)
 {
   out[0] = a[0] - b[0];
@@ -207,6 +215,13 @@ private:
   void LinkCorners();
   void AssignRegions();
   void Classify(std::uint32_t u);
+  /// Flips triangles (two corners swapped, their edge bits with them) so that every edge two
+  /// triangles share runs one way in one and the other way in the other, where the mesh allows
+  /// (Flipped notes them, and Extract turns them back). Classify locks the ends of an edge that
+  /// two triangles run the same way: a mesh whose triangles face every which way would keep
+  /// nearly all of them. Returns whether any triangle flipped; the fans must then be linked
+  /// again.
+  bool OrientConsistently();
   void BuildQuadrics();
   /// BuildQuadrics with the attribute count Fixed as a constant (Quadric::WithAttributeCount):
   /// it runs for every triangle of every diamond.
@@ -381,6 +396,7 @@ private:
   double Origin[3] = { 0, 0, 0 };
   double Scale = 1; // bounding box diagonal: positions are normalized by it
   int Attributes = 0;
+  bool NormalAttributes = false; ///< the first 3 attributes are the vertices' normals
   /// Per vertex, together since a price reads both: the normalized position, then the
   /// weighted attributes (PointSize doubles).
   std::size_t PointSize = 3;
@@ -393,6 +409,10 @@ private:
   std::vector<std::uint32_t> Into;
   std::vector<std::uint32_t> CollapseOrder; // the removed vertices, first collapsed first
   std::vector<VertexKind> Kind;
+  /// Edges Classify found run the same way by both of their triangles (counted at one end).
+  std::size_t MisorientedEdges = 0;
+  /// Per triangle, after OrientConsistently: flipped (empty when none was).
+  std::vector<std::uint8_t> Flipped;
   std::vector<Candidate> Best; // per vertex: its queued collapse
   CollapseQueues Waiting; // per region: the vertices whose collapse removes its triangles
   std::vector<std::int64_t> Counts;           // live triangles per region
@@ -497,6 +517,7 @@ Simplifier::Simplifier(const PatchMesh& mesh, int regionCount, const RegionFunct
   }
   const bool normals = options.NormalWeight > 0 && mesh.Normals.size() == 3 * VertexCount;
   const bool colors = options.ColorWeight > 0 && mesh.Colors.size() == 4 * VertexCount;
+  NormalAttributes = normals;
   Attributes = (normals ? 3 : 0) + (colors ? 4 : 0);
   PointSize = 3 + std::size_t(Attributes);
   Point.resize(PointSize * VertexCount);
@@ -710,6 +731,7 @@ void Simplifier::Classify(std::uint32_t u)
     const std::uint32_t y = Faces[t].V[PrevCorner(k)];
     locked = locked || Marks[x].CountU > 1 || Marks[x].CountV > 1 ||
       (Faces[t].Bits & ((8u << k) | (8u << PrevCorner(k))));
+    MisorientedEdges += std::size_t((Marks[x].CountU == 2) & (Marks[x].CountV == 0));
     if (Marks[x].CountV == 0)
     {
       ++open;
@@ -750,6 +772,63 @@ void Simplifier::Classify(std::uint32_t u)
   {
     Kind[u] = open ? VertexKind::Boundary : VertexKind::Free;
   }
+}
+
+bool Simplifier::OrientConsistently()
+{
+  Flipped.assign(TriangleCount, 0);
+  std::vector<std::uint8_t> reached(TriangleCount, 0);
+  std::vector<std::uint32_t> stack;
+  bool flipped = false;
+  for (std::uint32_t seed = 0; seed < TriangleCount; ++seed)
+  {
+    if (reached[seed] || Faces[seed].Removed)
+    {
+      continue;
+    }
+    reached[seed] = 1;
+    stack.push_back(seed);
+    while (!stack.empty())
+    {
+      const std::uint32_t t = stack.back();
+      stack.pop_back();
+      for (int k = 0; k < 3; ++k)
+      {
+        const std::uint32_t a = Faces[t].V[k], b = Faces[t].V[NextCorner(k)];
+        // The one other triangle on a-b, if one: the fans' corner slots predate the flips, so
+        // triangles are matched by their vertices.
+        std::uint32_t other = None;
+        int sharing = 0;
+        ForEachCorner(a, [&](std::uint32_t t2, int) {
+          if (t2 != t && Contains(t2, b))
+          {
+            other = t2;
+            ++sharing;
+          }
+        });
+        if (sharing != 1 || reached[other])
+        {
+          continue; // the input's boundary, a non-manifold edge, or settled already
+        }
+        reached[other] = 1;
+        stack.push_back(other);
+        Face& face = Faces[other];
+        const int ka = face.V[0] == a ? 0 : (face.V[1] == a ? 1 : 2);
+        if (face.V[NextCorner(ka)] == b) // a to b, as in t: the wrong way
+        {
+          std::swap(face.V[1], face.V[2]);
+          face.Bits = FlippedBits(face.Bits);
+          Flipped[other] = 1;
+          flipped = true;
+        }
+      }
+    }
+  }
+  if (!flipped)
+  {
+    Flipped.clear();
+  }
+  return flipped;
 }
 
 void Simplifier::BuildQuadrics()
@@ -1492,6 +1571,25 @@ SimplifyResult Simplifier::Run()
   {
     Classify(v);
   }
+  if (MisorientedEdges > 0 && OrientConsistently())
+  {
+    // The input's vertex normals were summed over faces facing every which way: noise that
+    // would order the collapses (the coarsest error of a sphere with half its faces flipped
+    // was 7 times that of the sphere), so shading is left out of the pricing here.
+    if (NormalAttributes)
+    {
+      for (std::size_t v = 0; v < VertexCount; ++v)
+      {
+        std::fill_n(&Point[PointSize * v + 3], 3, 0.0);
+      }
+    }
+    LinkCorners();
+    Kind.assign(VertexCount, VertexKind::Locked);
+    for (std::uint32_t v = 0; v < VertexCount; ++v)
+    {
+      Classify(v);
+    }
+  }
   BuildQuadrics();
   if (Excess > 0)
   {
@@ -1751,9 +1849,12 @@ PatchMesh Simplifier::Extract(const std::vector<std::uint32_t>& triangles)
   for (std::size_t i = 0; i < triangles.size(); ++i)
   {
     const Face& face = Faces[triangles[i]];
+    // A triangle OrientConsistently flipped goes out as it came in: corners 1 and 2 and edge
+    // bits 0 and 2 (3 and 5) traded back.
+    const bool flip = !Flipped.empty() && Flipped[triangles[i]];
     for (int k = 0; k < 3; ++k)
     {
-      const std::uint32_t v = face.V[k];
+      const std::uint32_t v = face.V[flip && k > 0 ? 3 - k : k];
       if (Marks[v].MarkU != StampU)
       {
         Marks[v].MarkU = StampU;
@@ -1762,7 +1863,7 @@ PatchMesh Simplifier::Extract(const std::vector<std::uint32_t>& triangles)
       }
       out.Indices[3 * i + std::size_t(k)] = Marks[v].SlotU;
     }
-    out.BoundaryEdges[i] = face.Bits;
+    out.BoundaryEdges[i] = flip ? FlippedBits(face.Bits) : face.Bits;
   }
   out.Positions.resize(3 * used.size());
   out.Normals.resize(normals ? 3 * used.size() : 0);
