@@ -409,7 +409,8 @@ private:
   std::vector<std::uint32_t> Into;
   std::vector<std::uint32_t> CollapseOrder; // the removed vertices, first collapsed first
   std::vector<VertexKind> Kind;
-  /// Edges Classify found run the same way by both of their triangles (counted at one end).
+  /// Edges Classify found run the same way by both of their triangles, counted once at each
+  /// triangle.
   std::size_t MisorientedEdges = 0;
   /// Per triangle, after OrientConsistently: flipped (empty when none was).
   std::vector<std::uint8_t> Flipped;
@@ -778,7 +779,10 @@ bool Simplifier::OrientConsistently()
 {
   Flipped.assign(TriangleCount, 0);
   std::vector<std::uint8_t> reached(TriangleCount, 0);
-  std::vector<std::uint32_t> stack;
+  // Breadth first: on a piece that cannot be oriented (a Moebius strip), the edges left running
+  // one way form a seam across it where the two fronts meet, not one along its whole length,
+  // which a walk that goes deep first left (their ends stay locked).
+  std::vector<std::uint32_t> queue;
   bool flipped = false;
   for (std::uint32_t seed = 0; seed < TriangleCount; ++seed)
   {
@@ -787,11 +791,10 @@ bool Simplifier::OrientConsistently()
       continue;
     }
     reached[seed] = 1;
-    stack.push_back(seed);
-    while (!stack.empty())
+    queue.assign(1, seed);
+    for (std::size_t next = 0; next < queue.size(); ++next)
     {
-      const std::uint32_t t = stack.back();
-      stack.pop_back();
+      const std::uint32_t t = queue[next];
       for (int k = 0; k < 3; ++k)
       {
         const std::uint32_t a = Faces[t].V[k], b = Faces[t].V[NextCorner(k)];
@@ -811,7 +814,7 @@ bool Simplifier::OrientConsistently()
           continue; // the input's boundary, a non-manifold edge, or settled already
         }
         reached[other] = 1;
-        stack.push_back(other);
+        queue.push_back(other);
         Face& face = Faces[other];
         const int ka = face.V[0] == a ? 0 : (face.V[1] == a ? 1 : 2);
         if (face.V[NextCorner(ka)] == b) // a to b, as in t: the wrong way
@@ -1571,12 +1574,16 @@ SimplifyResult Simplifier::Run()
   {
     Classify(v);
   }
+  // Counted at both triangles of an edge: edges two triangles run the same way, as a share.
+  const bool facingAtRandom = MisorientedEdges > TriangleCount / 10;
   if (MisorientedEdges > 0 && OrientConsistently())
   {
-    // The input's vertex normals were summed over faces facing every which way: noise that
-    // would order the collapses (the coarsest error of a sphere with half its faces flipped
-    // was 7 times that of the sphere), so shading is left out of the pricing here.
-    if (NormalAttributes)
+    // Where faces turn every which way, the input's vertex normals were summed over faces of
+    // both facings: noise that would order the collapses (the coarsest error of a sphere with
+    // half its faces turned at random was 7 times that of the sphere), so shading is left out
+    // of the pricing. A few such edges (sheets that touch, a seam between two consistent
+    // parts) spoil only the normals along them.
+    if (NormalAttributes && facingAtRandom)
     {
       for (std::size_t v = 0; v < VertexCount; ++v)
       {

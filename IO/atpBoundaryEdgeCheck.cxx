@@ -1,5 +1,7 @@
 #include "atpBoundaryEdgeCheck.h"
 
+#include "atpPositionWelder.h"
+
 #include <algorithm>
 #include <cstring>
 
@@ -7,16 +9,6 @@ namespace atp
 {
 namespace
 {
-/// A position's bits; -0 reads as +0, the same point.
-void PositionBits(const float p[3], std::uint32_t out[3])
-{
-  for (int a = 0; a < 3; ++a)
-  {
-    const float coordinate = p[a] == 0 ? 0.0f : p[a];
-    std::memcpy(&out[a], &coordinate, sizeof(float));
-  }
-}
-
 std::uint64_t Mix(std::uint64_t h, std::uint64_t word)
 {
   // splitmix64's finalizer over a running sum: every input bit reaches every output bit.

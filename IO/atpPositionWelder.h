@@ -1,108 +1,54 @@
-// Welds a stream of corner positions into an indexed mesh out of core: every distinct position
-// (bit for bit, -0 and +0 alike) gets one vertex index, numbered in order of first appearance,
-// with resident memory bounded whatever the number of corners. For inputs that are triangle soups
-// (STL), whose shared edges and boundary are found on vertex indices.
-//
-// Corners go to scratch buckets by a hash of their position; each bucket is welded with a table
-// of its own positions (a corner's vertex is the first corner with its position), then the
-// corners go back to scratch by their place in the stream, and are gathered range by range into
-// the index array, each first corner counted into its vertex index. Scratch disk: about 16 bytes
-// per corner at the peak, given back as it is read.
+// Welding by exact position in memory: the first vertex seen at a position (bit for bit)
+// stands for every later one there. Used where patches are joined (MergePatches, a leaf's
+// bucket) and, bucket by bucket, by the out-of-core CornerWelder.
 #ifndef atpPositionWelder_h
 #define atpPositionWelder_h
 
-#include "atpScratchArray.h"
-#include "atpScratchFile.h"
 #include "vtkATPIOModule.h" // export macro
 
 #include <cstdint>
-#include <string>
+#include <cstring>
 #include <vector>
 
 namespace atp
 {
 
-/// Fixed-size records appended to numbered streams that share one ScratchFile, a page at a time:
-/// each stream keeps one page in memory, and reading a stream back gives its pages' blocks back
-/// to the file system.
-class VTKATPIO_EXPORT ScratchStreams
+/// A position's bits with -0 read as +0 (the same point): the key positions are welded and
+/// counted by.
+inline void PositionBits(const float p[3], std::uint32_t out[3])
 {
-public:
-  ScratchStreams(const std::string& directory, std::size_t streams, std::size_t recordBytes);
-
-  void Append(std::size_t stream, const void* record);
-  std::uint64_t Records(std::size_t stream) const { return this->Streams[stream].Records; }
-  /// Reads stream `stream` back in the order it was written, a page at a time, calling
-  /// visit(const unsigned char* records, std::size_t count) for each, and empties it.
-  template <typename Visit>
-  void Drain(std::size_t stream, Visit visit)
+  for (int a = 0; a < 3; ++a)
   {
-    Stream& s = this->Streams[stream];
-    for (const std::uint64_t page : s.Pages)
-    {
-      this->ReadPage(page);
-      visit(this->ReadBuffer.data(), this->PageBytes / this->RecordBytes);
-    }
-    if (s.Used > 0)
-    {
-      visit(s.Page.data(), s.Used / this->RecordBytes);
-    }
-    s = Stream();
+    const float coordinate = p[a] + 0.0f; // -0 + 0 is +0
+    std::memcpy(&out[a], &coordinate, sizeof(float));
   }
+}
 
-private:
-  /// Reads the page at `offset` into ReadBuffer and gives its blocks back to the file system.
-  void ReadPage(std::uint64_t offset);
-
-  struct Stream
-  {
-    std::vector<unsigned char> Page; ///< the page being filled (allocated on first use)
-    std::size_t Used = 0;            ///< bytes of Page filled
-    std::vector<std::uint64_t> Pages; ///< offsets of its full pages in the file
-    std::uint64_t Records = 0;
-  };
-
-  ScratchFile File;
-  std::uint64_t FileEnd = 0;
-  std::size_t RecordBytes;
-  std::size_t PageBytes;
-  std::vector<Stream> Streams;
-  std::vector<unsigned char> ReadBuffer;
-};
-
+/// Numbers vertices by their exact position. Open addressing on the position bits; the table is
+/// only looked up, so its layout cannot influence the numbering.
 class VTKATPIO_EXPORT PositionWelder
 {
 public:
-  /// Most corners a welder takes: corners are numbered in 32 bits.
-  static constexpr std::uint64_t MaxCorners = 0xFFFFFFFFu;
+  /// For at most `maxVertices` distinct positions, stored in `positions` (room for 3 *
+  /// maxVertices floats) in the order they are first seen.
+  PositionWelder(std::size_t maxVertices, float* positions);
+  /// Forgets every position, for at most `maxVertices` more in `positions`; the table's memory
+  /// is kept for the next ones.
+  void Reset(std::size_t maxVertices, float* positions);
 
-  /// `expectedCorners` (a guess is fine: it only sizes the buckets) is how many Add will see.
-  PositionWelder(const std::string& scratchDirectory, std::uint64_t expectedCorners);
-
-  /// The next corner's position (finite). Throws std::length_error past MaxCorners.
-  void Add(const float p[3]);
-  std::uint64_t Corners() const { return this->CornerCount; }
-
-  struct Mesh
-  {
-    explicit Mesh(const std::string& directory)
-      : Positions(directory)
-      , Indices(directory)
-    {
-    }
-    ScratchArray<float> Positions;       ///< x, y, z per vertex, in order of first appearance
-    ScratchArray<std::uint32_t> Indices; ///< per corner, in the order added: its vertex
-    std::uint64_t VertexCount = 0;
-  };
-
-  /// Welds what was added; the arrays' pages are released as they are written.
-  Mesh Finish();
+  /// The number of the vertex at p; `added` tells whether it is new (its position then stored,
+  /// numbered after all earlier ones). Throws std::logic_error rather than write past the
+  /// room for maxVertices.
+  std::uint32_t Weld(const float p[3], bool& added);
+  /// Distinct positions seen so far.
+  std::size_t Count() const { return Vertices; }
 
 private:
-  std::string Directory;
-  std::uint64_t CornerCount = 0;
-  int BucketBits = 0;
-  ScratchStreams Buckets;
+  float* Positions = nullptr;
+  std::size_t MaxVertices = 0;
+  std::size_t Vertices = 0;
+  std::vector<std::uint32_t> Slots; ///< vertex number + 1; 0 is empty
+  std::size_t Mask = 0;
 };
 
 } // namespace atp

@@ -2,7 +2,7 @@
 
 #include "atpBufferedReader.h"
 #include "atpInputFile.h"
-#include "atpPositionWelder.h"
+#include "atpCornerWelder.h"
 #include "atpResidentPages.h"
 #include "atpScratchArray.h"
 #include "atpTextParsing.h"
@@ -22,12 +22,14 @@ constexpr std::uint64_t RecordBytes = 50; // normal, 3 corners, uint16 attribute
 /// The fewest bytes an ASCII corner takes ("vertex 0 0 0" and its share of the facet's lines):
 /// sizes the welder's buckets from the file's size.
 constexpr std::uint64_t LeastAsciiCornerBytes = 20;
+/// Facet sizes written between releases of the sizes' pages (4 MiB of them).
+constexpr std::size_t SizesReleaseInterval = std::size_t(1) << 20;
 
 /// The welded soup, in scratch arrays whose pages leave the process as the faces stream by.
 class StlMesh final : public PolygonMesh
 {
 public:
-  StlMesh(PositionWelder::Mesh welded, std::uint64_t faces, ScratchArray<std::uint32_t> sizes)
+  StlMesh(CornerWelder::Mesh welded, std::uint64_t faces, ScratchArray<std::uint32_t> sizes)
     : Welded(std::move(welded))
     , Faces(faces)
     , Sizes(std::move(sizes))
@@ -95,7 +97,7 @@ private:
     this->Batch = PolygonBatch();
   }
 
-  PositionWelder::Mesh Welded;
+  CornerWelder::Mesh Welded;
   std::uint64_t Faces;
   ScratchArray<std::uint32_t> Sizes; ///< corners per facet; empty when all are triangles
   bool AllTriangles;
@@ -107,7 +109,7 @@ private:
 };
 
 /// Adds a corner to the welder; its limit becomes the file's error.
-void AddCorner(const InputFile& file, PositionWelder& welder, const float p[3])
+void AddCorner(const InputFile& file, CornerWelder& welder, const float p[3])
 {
   try
   {
@@ -139,12 +141,12 @@ bool LooksLikeAscii(const InputFile& file)
 
 std::unique_ptr<PolygonMesh> ReadBinary(const InputFile& file, std::uint64_t count, const std::string& scratch)
 {
-  PositionWelder welder(scratch, 3 * count);
+  CornerWelder welder(scratch, 3 * count);
   // The welder numbers corners in 32 bits; past that, say so before reading gigabytes.
-  if (3 * count > PositionWelder::MaxCorners)
+  if (3 * count > CornerWelder::MaxCorners)
   {
     file.Fail("holds " + std::to_string(count) + " triangles; at most " +
-      std::to_string(PositionWelder::MaxCorners / 3) + " are supported");
+      std::to_string(CornerWelder::MaxCorners / 3) + " are supported");
   }
   BufferedReader reader(file, HeaderBytes);
   for (std::uint64_t t = 0; t < count; ++t)
@@ -166,7 +168,7 @@ std::unique_ptr<PolygonMesh> ReadBinary(const InputFile& file, std::uint64_t cou
 
 std::unique_ptr<PolygonMesh> ReadAscii(const InputFile& file, const std::string& scratch)
 {
-  PositionWelder welder(scratch, file.Size() / LeastAsciiCornerBytes);
+  CornerWelder welder(scratch, file.Size() / LeastAsciiCornerBytes);
   ScratchArray<std::uint32_t> sizes(scratch);
   std::uint64_t facets = 0;
   bool allTriangles = true;
@@ -182,6 +184,10 @@ std::unique_ptr<PolygonMesh> ReadAscii(const InputFile& file, const std::string&
     }
     else if (token == "outer")
     {
+      if (inLoop)
+      {
+        file.FailAtLine(reader.Line(), "'outer loop' inside a loop (no 'endloop' before it)");
+      }
       corners = 0;
       inLoop = true;
     }
@@ -228,6 +234,10 @@ std::unique_ptr<PolygonMesh> ReadAscii(const InputFile& file, const std::string&
       if (!allTriangles)
       {
         sizes.PushBack(corners);
+        if (sizes.Size() % SizesReleaseInterval == 0)
+        {
+          sizes.ReleaseResident(); // written once, read when the faces stream by
+        }
       }
       ++facets;
       inLoop = false;

@@ -1412,6 +1412,10 @@ TEST_F(TriangleSources, StlErrors)
     "stray.stl line 3: a vertex outside 'outer loop' ... 'endloop'");
   this->ExpectError(this->Write("unopened.stl", "solid x\nfacet normal 0 0 1\nendloop\n"),
     "unopened.stl line 3: 'endloop' without 'outer loop'");
+  this->ExpectError(this->Write("unclosed.stl",
+                      "solid x\nfacet normal 0 0 1\nouter loop\nvertex 9 9 9\nvertex 8 8 8\n"
+                      "outer loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"),
+    "unclosed.stl line 6: 'outer loop' inside a loop (no 'endloop' before it)");
 }
 
 TEST_F(TriangleSources, VtpErrors)

@@ -1,5 +1,6 @@
-// PositionWelder: the same vertices, in the same order (first appearance), as welding in memory
+// CornerWelder: the same vertices, in the same order (first appearance), as welding in memory
 // by exact position, -0 as +0, over many buckets and several gathering ranges.
+#include "atpCornerWelder.h"
 #include "atpPositionWelder.h"
 
 #include <gtest/gtest.h>
@@ -27,18 +28,14 @@ struct KeyHash
 Key KeyOf(const float p[3])
 {
   Key key;
-  for (int a = 0; a < 3; ++a)
-  {
-    const float x = p[a] + 0.0f;
-    std::memcpy(&key[a], &x, sizeof(float));
-  }
+  atp::PositionBits(p, key.data());
   return key;
 }
 
 /// Welds `corners` (3 floats each) both ways and compares.
 void ExpectWeldedAsInMemory(const std::vector<float>& corners, std::uint64_t expectedCorners)
 {
-  atp::PositionWelder welder(Scratch(), expectedCorners);
+  atp::CornerWelder welder(Scratch(), expectedCorners);
   std::unordered_map<Key, std::uint32_t, KeyHash> index;
   std::vector<std::uint32_t> indices;
   std::vector<float> positions;
@@ -54,7 +51,7 @@ void ExpectWeldedAsInMemory(const std::vector<float>& corners, std::uint64_t exp
     indices.push_back(it->second);
   }
   EXPECT_EQ(welder.Corners(), indices.size());
-  const atp::PositionWelder::Mesh mesh = welder.Finish();
+  const atp::CornerWelder::Mesh mesh = welder.Finish();
   ASSERT_EQ(mesh.VertexCount, index.size());
   ASSERT_EQ(mesh.Indices.Size(), indices.size());
   ASSERT_EQ(mesh.Positions.Size(), positions.size());
@@ -70,7 +67,7 @@ void ExpectWeldedAsInMemory(const std::vector<float>& corners, std::uint64_t exp
 }
 } // namespace
 
-TEST(PositionWelder, NumbersPositionsInOrderOfFirstAppearance)
+TEST(CornerWelder, NumbersPositionsInOrderOfFirstAppearance)
 {
   // A strip of quads as a soup: each inner vertex met in six corners.
   std::vector<float> corners;
@@ -84,15 +81,15 @@ TEST(PositionWelder, NumbersPositionsInOrderOfFirstAppearance)
   ExpectWeldedAsInMemory(corners, corners.size() / 3);
 }
 
-TEST(PositionWelder, NegativeZeroIsZero)
+TEST(CornerWelder, NegativeZeroIsZero)
 {
   const std::vector<float> corners = { -0.0f, 0, 1, 0, -0.0f, 1, 0, 0, 1, 0, 0, -0.0f, 0, 0, 0 };
-  atp::PositionWelder welder(Scratch(), 5);
+  atp::CornerWelder welder(Scratch(), 5);
   for (std::size_t c = 0; c < corners.size() / 3; ++c)
   {
     welder.Add(&corners[3 * c]);
   }
-  const atp::PositionWelder::Mesh mesh = welder.Finish();
+  const atp::CornerWelder::Mesh mesh = welder.Finish();
   EXPECT_EQ(mesh.VertexCount, 2u);
   const std::uint32_t expected[5] = { 0, 0, 0, 1, 1 };
   for (int c = 0; c < 5; ++c)
@@ -101,7 +98,7 @@ TEST(PositionWelder, NegativeZeroIsZero)
   }
 }
 
-TEST(PositionWelder, ManyBucketsAndRanges)
+TEST(CornerWelder, ManyBucketsAndRanges)
 {
   // 5M corners (two gathering ranges of 2^22) drawn from 300k positions, spread over 256
   // buckets by a large guess of the corner count; some positions recur millions of corners later.
@@ -117,10 +114,10 @@ TEST(PositionWelder, ManyBucketsAndRanges)
   ExpectWeldedAsInMemory(corners, std::uint64_t(1) << 28);
 }
 
-TEST(PositionWelder, NothingAddedIsAnEmptyMesh)
+TEST(CornerWelder, NothingAddedIsAnEmptyMesh)
 {
-  atp::PositionWelder welder(Scratch(), 0);
-  const atp::PositionWelder::Mesh mesh = welder.Finish();
+  atp::CornerWelder welder(Scratch(), 0);
+  const atp::CornerWelder::Mesh mesh = welder.Finish();
   EXPECT_EQ(mesh.VertexCount, 0u);
   EXPECT_EQ(mesh.Indices.Size(), 0u);
 }
