@@ -732,7 +732,7 @@ void Simplifier::Classify(std::uint32_t u)
     const std::uint32_t y = Faces[t].V[PrevCorner(k)];
     locked = locked || Marks[x].CountU > 1 || Marks[x].CountV > 1 ||
       (Faces[t].Bits & ((8u << k) | (8u << PrevCorner(k))));
-    MisorientedEdges += std::size_t((Marks[x].CountU == 2) & (Marks[x].CountV == 0));
+    MisorientedEdges += std::size_t(int(Marks[x].CountU == 2) & int(Marks[x].CountV == 0));
     if (Marks[x].CountV == 0)
     {
       ++open;
