@@ -22,6 +22,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkStaticPointLocator.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -118,6 +119,18 @@ int BuildModel(vtkPolyData* mesh, const std::string& path, int threads, int capa
   const int ok = builder->Build();
   EXPECT_EQ(ok, 1) << builder->GetErrorMessage();
   return ok;
+}
+
+/// A builder of `mesh` into `path` with small leaves and patches (300 and 150 triangles), so
+/// that a small mesh makes many levels; Build() is the caller's.
+vtkSmartPointer<vtkATPBuilder> SmallBuilder(vtkPolyData* mesh, const std::string& path)
+{
+  auto builder = vtkSmartPointer<vtkATPBuilder>::New();
+  builder->SetInputData(mesh);
+  builder->SetFileName(path.c_str());
+  builder->SetLeafCapacity(300);
+  builder->SetPatchBudget(150);
+  return builder;
 }
 
 /// Where the input's vertices land after quantization: the only positions a model may hold.
@@ -559,21 +572,13 @@ TEST_F(Construction, TrianglesFacingEitherWaySimplifyWithoutACrack)
   }
   mesh->SetPolys(turned);
   const std::string path = TempPath("turned.atp");
-  vtkNew<vtkATPBuilder> builder;
-  builder->SetInputData(mesh);
-  builder->SetFileName(path.c_str());
-  builder->SetLeafCapacity(300);
-  builder->SetPatchBudget(150);
+  const vtkSmartPointer<vtkATPBuilder> builder = SmallBuilder(mesh, path);
   ASSERT_EQ(builder->Build(), 1) << builder->GetErrorMessage();
   // The same torus, every triangle facing out.
   vtkNew<vtkPolyData> facingOut;
   facingOut->DeepCopy(Torus(120, 60, 0));
   const std::string referencePath = TempPath("facing-out.atp");
-  vtkNew<vtkATPBuilder> reference;
-  reference->SetInputData(facingOut);
-  reference->SetFileName(referencePath.c_str());
-  reference->SetLeafCapacity(300);
-  reference->SetPatchBudget(150);
+  const vtkSmartPointer<vtkATPBuilder> reference = SmallBuilder(facingOut, referencePath);
   ASSERT_EQ(reference->Build(), 1) << reference->GetErrorMessage();
   std::remove(referencePath.c_str());
   const atp::ConstructionStats& stats = builder->GetConstructionStats();
@@ -621,11 +626,7 @@ TEST_F(Construction, UnweldedAndRepeatedTrianglesLeaveNoCrack)
   mesh->SetPoints(points);
   mesh->SetPolys(soup);
   const std::string path = TempPath("soup.atp");
-  vtkNew<vtkATPBuilder> builder;
-  builder->SetInputData(mesh);
-  builder->SetFileName(path.c_str());
-  builder->SetLeafCapacity(300);
-  builder->SetPatchBudget(150);
+  const vtkSmartPointer<vtkATPBuilder> builder = SmallBuilder(mesh, path);
   ASSERT_EQ(builder->Build(), 1) << builder->GetErrorMessage();
   EXPECT_EQ(builder->GetInputStats().BoundaryEdges, 2u * 14) << "the two holes' edges, by position";
   EXPECT_GT(builder->GetInputStats().SharedOpenEdges, 0u);
