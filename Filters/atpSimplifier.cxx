@@ -1568,12 +1568,15 @@ bool Simplifier::RemoveSmallestPiece(bool anySize)
 
 SimplifyResult Simplifier::Run()
 {
+  const auto classifyAll = [this] {
+    for (std::uint32_t v = 0; v < VertexCount; ++v)
+    {
+      Classify(v);
+    }
+  };
   LinkCorners();
   AssignRegions();
-  for (std::uint32_t v = 0; v < VertexCount; ++v)
-  {
-    Classify(v);
-  }
+  classifyAll();
   // Counted at both triangles of an edge: edges two triangles run the same way, as a share.
   const bool facingAtRandom = MisorientedEdges > TriangleCount / 10;
   if (MisorientedEdges > 0 && OrientConsistently())
@@ -1592,10 +1595,7 @@ SimplifyResult Simplifier::Run()
     }
     LinkCorners();
     Kind.assign(VertexCount, VertexKind::Locked);
-    for (std::uint32_t v = 0; v < VertexCount; ++v)
-    {
-      Classify(v);
-    }
+    classifyAll();
   }
   BuildQuadrics();
   if (Excess > 0)

@@ -43,14 +43,6 @@ struct PositionRecord
   float P[3];
 };
 
-std::uint64_t PositionHash(const std::uint32_t key[3])
-{
-  std::uint64_t h = key[0] * 0x9e3779b97f4a7c15ULL;
-  h = (h ^ key[1]) * 0xbf58476d1ce4e5b9ULL;
-  h = (h ^ key[2]) * 0x94d049bb133111ebULL;
-  return h ^ (h >> 31);
-}
-
 /// The records of a stream's page (its buffer holds whole records, written as bytes).
 template <typename Record>
 const Record* RecordsOf(const unsigned char* bytes)

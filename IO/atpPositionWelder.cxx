@@ -5,19 +5,6 @@
 namespace atp
 {
 
-namespace
-{
-
-std::uint64_t HashPosition(const std::uint32_t bits[3])
-{
-  std::uint64_t h = bits[0] * 0x9E3779B97F4A7C15ull;
-  h ^= (h >> 29) ^ (bits[1] * 0xC2B2AE3D27D4EB4Full);
-  h ^= (h >> 31) ^ (bits[2] * 0x165667B19E3779F9ull);
-  return h ^ (h >> 32);
-}
-
-} // namespace
-
 PositionWelder::PositionWelder(std::size_t maxVertices, float* positions)
 {
   Reset(maxVertices, positions);
@@ -41,7 +28,7 @@ std::uint32_t PositionWelder::Weld(const float p[3], bool& added)
 {
   std::uint32_t bits[3];
   std::memcpy(bits, p, sizeof(bits));
-  std::size_t s = HashPosition(bits) & Mask;
+  std::size_t s = PositionHash(bits) & Mask;
   for (; Slots[s] != 0; s = (s + 1) & Mask)
   {
     if (std::memcmp(&Positions[3 * (Slots[s] - 1)], bits, sizeof(bits)) == 0)

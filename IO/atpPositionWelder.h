@@ -24,6 +24,16 @@ inline void PositionBits(const float p[3], std::uint32_t out[3])
   }
 }
 
+/// A hash of a position's bits: PositionWelder's slots take its low bits, CornerWelder's buckets
+/// its high ones.
+inline std::uint64_t PositionHash(const std::uint32_t bits[3])
+{
+  std::uint64_t h = bits[0] * 0x9E3779B97F4A7C15ull;
+  h ^= (h >> 29) ^ (bits[1] * 0xC2B2AE3D27D4EB4Full);
+  h ^= (h >> 31) ^ (bits[2] * 0x165667B19E3779F9ull);
+  return h ^ (h >> 32);
+}
+
 /// Numbers vertices by their exact position. Open addressing on the position bits; the table is
 /// only looked up, so its layout cannot influence the numbering.
 class VTKATPIO_EXPORT PositionWelder

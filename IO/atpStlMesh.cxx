@@ -33,9 +33,8 @@ public:
     : Welded(std::move(welded))
     , Faces(faces)
     , Sizes(std::move(sizes))
-    , AllTriangles(this->Sizes.Size() == 0)
   {
-    if (this->AllTriangles)
+    if (this->AllTriangles())
     {
       this->Threes.assign(PolygonBatchFaces, 3);
     }
@@ -67,10 +66,10 @@ public:
     const std::size_t count =
       static_cast<std::size_t>(std::min<std::uint64_t>(PolygonBatchFaces, this->Faces - this->NextFace));
     batch.Indices = this->Welded.Indices.Data() + this->NextCorner;
-    batch.Sizes = this->AllTriangles ? this->Threes.data() : this->Sizes.Data() + this->NextFace;
+    batch.Sizes = this->AllTriangles() ? this->Threes.data() : this->Sizes.Data() + this->NextFace;
     batch.Count = count;
     std::uint64_t corners = 3 * std::uint64_t(count);
-    if (!this->AllTriangles)
+    if (!this->AllTriangles())
     {
       corners = std::accumulate(batch.Sizes, batch.Sizes + count, std::uint64_t(0));
     }
@@ -82,6 +81,7 @@ public:
   }
 
 private:
+  bool AllTriangles() const { return this->Sizes.Size() == 0; }
   /// The last batch handed out is no longer valid: its pages may leave the process.
   void ReleaseBatch()
   {
@@ -90,7 +90,7 @@ private:
       return;
     }
     ReleaseResidentPages(this->Batch.Indices, this->BatchCorners * sizeof(std::uint32_t));
-    if (!this->AllTriangles)
+    if (!this->AllTriangles())
     {
       ReleaseResidentPages(this->Batch.Sizes, this->Batch.Count * sizeof(std::uint32_t));
     }
@@ -100,7 +100,6 @@ private:
   CornerWelder::Mesh Welded;
   std::uint64_t Faces;
   ScratchArray<std::uint32_t> Sizes; ///< corners per facet; empty when all are triangles
-  bool AllTriangles;
   std::vector<std::uint32_t> Threes; ///< a batch's sizes when all are triangles
   std::uint64_t NextFace = 0;
   std::uint64_t NextCorner = 0;
