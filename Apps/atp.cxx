@@ -173,9 +173,10 @@ int Build(int argc, char** argv, atp::MpiJobRunner* workers)
   }
   builder->SetJobRunner(workers);
 
-  // Errors are reported once, by us, not also by VTK's output window.
+  // Errors and warnings are reported once, by us, not also by VTK's output window.
   vtkNew<vtkCallbackCommand> swallowErrors;
   builder->AddObserver(vtkCommand::ErrorEvent, swallowErrors);
+  builder->AddObserver(vtkCommand::WarningEvent, swallowErrors);
   atp::ProgressReport progress("building", 0, "triangles");
   vtkNew<vtkCallbackCommand> onProgress;
   onProgress->SetClientData(&progress);
@@ -292,6 +293,11 @@ int Build(int argc, char** argv, atp::MpiJobRunner* workers)
     double(c.FileBytes) / double(std::max<std::uint64_t>(1, p.Triangles)),
     FormatDuration(seconds).c_str(), seconds,
     FormatCount(double(p.Triangles) / std::max(seconds, 1e-9)).c_str(), PeakResidentMiB());
+  if (*builder->GetWarningMessage())
+  {
+    std::fflush(stdout); // after the figures, also where both go to one pipe
+    std::fprintf(stderr, "atp build: warning: %s\n", builder->GetWarningMessage());
+  }
   return 0;
 }
 

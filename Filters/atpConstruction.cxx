@@ -438,6 +438,7 @@ private:
     Stats.QuotaMisses += made.TrianglesOverQuotas > 0;
     Stats.TrianglesOverQuotas += made.TrianglesOverQuotas;
     Stats.PiecesRemoved += made.PiecesRemoved;
+    Stats.DiamondsFacingAtRandom += made.FacingAtRandom;
   }
 
   /// Writes the finished records of a level (`results` in file order) to the node scratch, each

@@ -63,6 +63,9 @@ struct ConstructionStats
   /// Pieces (an isosurface's specks, separate triangles) removed whole where no collapse was
   /// left (Simplify).
   std::uint64_t PiecesRemoved = 0;
+  /// Diamonds whose triangles face either way at random (SimplifyResult::FacingAtRandom): the
+  /// input is not wound consistently, and its model shades speckled.
+  std::uint64_t DiamondsFacingAtRandom = 0;
   /// Copies of an input triangle dropped from its leaf (WeldSoup); the model's InputTriangles
   /// leaves them out.
   std::uint64_t RepeatedTrianglesDropped = 0;

@@ -181,6 +181,7 @@ PatchJobResult SimplifyDiamond(const PatchJobContext& context, PatchJob& job)
   result.Collapses = simplified.Collapses;
   result.TrianglesOverQuotas = simplified.TrianglesOverQuotas;
   result.PiecesRemoved = simplified.PiecesRemoved;
+  result.FacingAtRandom = simplified.FacingAtRandom;
   result.Patches.resize(job.Members.size());
   for (std::size_t i = 0; i < job.Members.size(); ++i)
   {

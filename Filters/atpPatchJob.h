@@ -78,6 +78,8 @@ struct PatchJobResult
   /// Triangles above the diamond's quotas (QuotasOf): see SimplifyResult.
   std::uint64_t TrianglesOverQuotas = 0;
   std::uint64_t PiecesRemoved = 0; ///< pieces removed whole: see Simplify
+  /// The diamond's triangles face either way at random: see SimplifyResult.
+  bool FacingAtRandom = false;
   /// A leaf's copies of a triangle (the same corners in the same order) it dropped: see WeldSoup.
   std::uint64_t RepeatedTrianglesDropped = 0;
   JobCpuSeconds Cpu;

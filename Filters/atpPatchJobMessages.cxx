@@ -12,9 +12,10 @@ namespace
 /// The messages' version: one more whenever a message gains, loses or widens a field (the
 /// sizes of the shipped types count themselves). 1: the first; 2: a result carries the
 /// triangles over its quotas instead of a flag; 3: and the closed pieces removed; 4: and the
-/// CPU time of its steps; 5: the context carries the cache order. TestPatchJob pins a result
-/// message's size.
-constexpr std::uint64_t MessageVersion = 6;
+/// CPU time of its steps; 5: the context carries the cache order; 6: a result carries the
+/// repeated triangles dropped; 7: and whether its triangles face either way at random.
+/// TestPatchJob pins a result message's size.
+constexpr std::uint64_t MessageVersion = 7;
 static_assert(sizeof(JobCpuSeconds) == 3 * sizeof(double),
   "a step added to JobCpuSeconds changes the result message: bump MessageVersion");
 
@@ -238,6 +239,7 @@ void EncodeResult(const PatchJobResult& result, std::vector<std::uint8_t>& out)
   w.Put(result.Collapses);
   w.Put(result.TrianglesOverQuotas);
   w.Put(result.PiecesRemoved);
+  w.Put(std::uint8_t(result.FacingAtRandom));
   w.Put(result.RepeatedTrianglesDropped);
   w.Put(result.Cpu);
 }
@@ -257,9 +259,15 @@ void DecodeResult(const std::uint8_t* data, std::size_t bytes, PatchJobResult& o
   out.Collapses = r.Get<std::uint64_t>();
   out.TrianglesOverQuotas = r.Get<std::uint64_t>();
   out.PiecesRemoved = r.Get<std::uint64_t>();
+  const auto facingAtRandom = r.Get<std::uint8_t>();
+  out.FacingAtRandom = facingAtRandom != 0;
   out.RepeatedTrianglesDropped = r.Get<std::uint64_t>();
   out.Cpu = r.Get<JobCpuSeconds>();
   r.ExpectEnd();
+  if (facingAtRandom > 1)
+  {
+    r.Fail();
+  }
 }
 
 } // namespace atp

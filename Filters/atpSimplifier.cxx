@@ -412,6 +412,7 @@ private:
   /// Edges Classify found run the same way by both of their triangles, counted once at each
   /// triangle.
   std::size_t MisorientedEdges = 0;
+  bool FacingAtRandom = false; ///< see SimplifyResult
   /// Per triangle, after OrientConsistently: flipped (empty when none was).
   std::vector<std::uint8_t> Flipped;
   std::vector<Candidate> Best; // per vertex: its queued collapse
@@ -1578,7 +1579,7 @@ SimplifyResult Simplifier::Run()
   AssignRegions();
   classifyAll();
   // Counted at both triangles of an edge: edges two triangles run the same way, as a share.
-  const bool facingAtRandom = MisorientedEdges > TriangleCount / 10;
+  FacingAtRandom = MisorientedEdges > TriangleCount / 10;
   if (MisorientedEdges > 0 && OrientConsistently())
   {
     // Where faces turn every which way, the input's vertex normals were summed over faces of
@@ -1586,7 +1587,7 @@ SimplifyResult Simplifier::Run()
     // half its faces turned at random was 7 times that of the sphere), so shading is left out
     // of the pricing. A few such edges (sheets that touch, a seam between two consistent
     // parts) spoil only the normals along them.
-    if (NormalAttributes && facingAtRandom)
+    if (NormalAttributes && FacingAtRandom)
     {
       for (std::size_t v = 0; v < VertexCount; ++v)
       {
@@ -1729,6 +1730,7 @@ SimplifyResult Simplifier::Run()
   result.PiecesRemoved =
     std::size_t(std::count_if(Pieces.begin(), Pieces.end(), [](const Piece& p) { return p.Removed; }));
   result.TrianglesOverQuotas = std::uint64_t(Excess);
+  result.FacingAtRandom = FacingAtRandom;
   std::vector<std::vector<std::uint32_t>> byRegion(static_cast<std::size_t>(RegionCount));
   for (std::uint32_t t = 0; t < TriangleCount; ++t)
   {

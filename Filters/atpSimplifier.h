@@ -59,6 +59,11 @@ struct SimplifyResult
   std::size_t Collapses = 0;
   /// Pieces removed whole (see Simplify).
   std::size_t PiecesRemoved = 0;
+  /// The mesh's triangles face either way at random: more than a tenth as many of its edges as
+  /// it has triangles are run the same way by both of their triangles (counted at each). It
+  /// simplified with them turned one way, but normals summed over such faces are noise, and
+  /// the input's winding, kept in the output, shades speckled.
+  bool FacingAtRandom = false;
   /// Triangles above the quotas, summed over the regions that end over theirs, plus those
   /// above the total quota: locked or topologically constrained geometry can keep some.
   std::uint64_t TrianglesOverQuotas = 0;

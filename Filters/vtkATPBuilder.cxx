@@ -128,6 +128,7 @@ int vtkATPBuilder::Build()
 int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, vtkInformationVector*)
 {
   this->ErrorMessage.clear();
+  this->WarningMessage.clear();
   const std::string scratch = this->ScratchDirectory ? this->ScratchDirectory : "";
   try
   {
@@ -188,6 +189,16 @@ int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, v
     this->Last->ConstructionSeconds = SecondsSince(phaseStart);
     this->Last->ConstructionCpuSeconds = atp::ProcessCpuSeconds() - phaseCpuStart;
     this->UpdateProgress(1);
+    if (const std::uint64_t atRandom = this->Last->Construction.DiamondsFacingAtRandom)
+    {
+      // The model is whole and valid, only its shading suffers: a warning, not a failure.
+      this->WarningMessage = "the input's triangles are wound either way at random (in " +
+        std::to_string(atRandom) + " of " + std::to_string(this->Last->Construction.Diamonds) +
+        " diamonds): normals summed over such faces are noise and the model keeps the input's "
+        "winding, so it shades speckled; orient the triangles consistently first (in VTK: "
+        "vtkPolyDataNormals with ConsistencyOn)";
+      vtkWarningMacro(<< this->WarningMessage);
+    }
   }
   catch (const std::exception& e)
   {

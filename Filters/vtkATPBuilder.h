@@ -128,6 +128,10 @@ public:
   /// Runs the build. Returns 1 on success, 0 on failure (see GetErrorMessage()).
   int Build();
   const char* GetErrorMessage() const { return this->ErrorMessage.c_str(); }
+  /// What the last successful build found wrong with its input without failing (also sent as
+  /// a vtkWarningMacro), or an empty string: triangles wound either way at random, which the
+  /// model keeps and which shade speckled.
+  const char* GetWarningMessage() const { return this->WarningMessage.c_str(); }
 
   /// Triangles the running build expects to read (from the input's header), for progress
   /// observers that show a rate; 0 before the input is open or when unknown.
@@ -186,6 +190,7 @@ private:
   std::unique_ptr<Results> Last;
   std::unique_ptr<atp::RawVolumeLayout> RawLayout;
   std::string ErrorMessage;
+  std::string WarningMessage;
 };
 
 #endif

@@ -79,18 +79,21 @@ void ModelBuild::Run(const QString& input, double isoValue, const QString& model
     builder->SetIsoValue(isoValue);
   }
   builder->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  vtkNew<vtkCallbackCommand> shownInTheWindow; // a warning goes to a message box, not stderr
+  builder->AddObserver(vtkCommand::WarningEvent, shownInTheWindow);
   const ErrorCapture errors({ builder });
   const bool ok = builder->Build();
   const bool cancelled = !ok && Cancelled;
   QString error = ok ? QString()
     : QString::fromLocal8Bit(errors.Message().empty() ? builder->GetErrorMessage() : errors.Message().c_str());
-  QMetaObject::invokeMethod(this, [this, model, error, cancelled] {
+  const QString warning = ok ? QString::fromLocal8Bit(builder->GetWarningMessage()) : QString();
+  QMetaObject::invokeMethod(this, [this, model, error, warning, cancelled] {
     if (Worker.joinable())
     {
       Worker.join();
     }
     Progress->hide();
-    emit Finished(model, error, cancelled);
+    emit Finished(model, error, warning, cancelled);
   }, Qt::QueuedConnection);
 }
 

@@ -29,8 +29,9 @@ public:
   ~ModelBuild() override;
 
 signals:
-  /// The build ended: `error` is empty on success; `cancelled` when Cancel stopped it.
-  void Finished(const QString& model, const QString& error, bool cancelled);
+  /// The build ended: `error` is empty on success, `warning` unless the build succeeded with
+  /// one (vtkATPBuilder::GetWarningMessage); `cancelled` when Cancel stopped it.
+  void Finished(const QString& model, const QString& error, const QString& warning, bool cancelled);
 
 private:
   void Run(const QString& input, double isoValue, const QString& model);

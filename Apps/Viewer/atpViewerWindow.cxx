@@ -157,10 +157,21 @@ void ViewerWindow::CreateActions()
 
 void ViewerWindow::ShowError(const QString& title, const QString& message)
 {
+  ShowMessageBox(QMessageBox::Critical, "errorMessage", title, message);
+}
+
+void ViewerWindow::ShowWarning(const QString& title, const QString& message)
+{
+  ShowMessageBox(QMessageBox::Warning, "warningMessage", title, message);
+}
+
+void ViewerWindow::ShowMessageBox(
+  QMessageBox::Icon icon, const char* name, const QString& title, const QString& message)
+{
   statusBar()->showMessage(title + ": " + message);
   // Not exec(): the window (and whatever drives it) goes on while the box is up.
-  auto* box = new QMessageBox(QMessageBox::Critical, title, message, QMessageBox::Ok, this);
-  box->setObjectName("errorMessage");
+  auto* box = new QMessageBox(icon, title, message, QMessageBox::Ok, this);
+  box->setObjectName(name);
   box->setAttribute(Qt::WA_DeleteOnClose);
   box->open();
   emit ErrorShown(message);
@@ -215,7 +226,7 @@ void ViewerWindow::BuildModel(const QString& input, const QString& model, double
   statusBar()->showMessage(tr("Building %1 from %2...").arg(model, input));
   Build = new ModelBuild(input, isoValue, model, this);
   connect(Build, &ModelBuild::Finished, this,
-    [this](const QString& built, const QString& error, bool cancelled) {
+    [this](const QString& built, const QString& error, const QString& warning, bool cancelled) {
       Build->deleteLater();
       Build = nullptr;
       BuildAction->setEnabled(true);
@@ -227,9 +238,9 @@ void ViewerWindow::BuildModel(const QString& input, const QString& model, double
       {
         ShowError(tr("Cannot build %1").arg(QFileInfo(built).fileName()), error);
       }
-      else
+      else if (OpenModel(built) && !warning.isEmpty())
       {
-        OpenModel(built);
+        ShowWarning(tr("Built %1 with a warning").arg(QFileInfo(built).fileName()), warning);
       }
     });
 }

@@ -15,6 +15,7 @@
 
 #include <QElapsedTimer>
 #include <QMainWindow>
+#include <QMessageBox>
 #include <QTimer>
 
 class QAction;
@@ -84,6 +85,10 @@ protected:
 private:
   void CreateActions();
   void ShowError(const QString& title, const QString& message);
+  /// A built model with something wrong in its input (vtkATPBuilder::GetWarningMessage).
+  void ShowWarning(const QString& title, const QString& message);
+  /// The status bar, and a message box that does not block: "errorMessage" or "warningMessage".
+  void ShowMessageBox(QMessageBox::Icon icon, const char* name, const QString& title, const QString& message);
   void Rendered();
   void PlaybackStep();
   void ChooseModel();

@@ -596,6 +596,8 @@ TEST(Simplifier, MisorientedTrianglesAreTurnedWhileSimplifyingAndBackAfter)
   const SimplifyResult result = Simplify(turned, 1, OneRegion(), { 900 });
   EXPECT_TRUE(result.QuotasMet()) << TriangleTotal(result) << " triangles";
   EXPECT_LE(result.Error, 1.5 * reference.Error);
+  EXPECT_FALSE(reference.FacingAtRandom);
+  EXPECT_FALSE(result.FacingAtRandom) << "seams between stripes are no random facing";
   const PatchMesh out = Joined(result);
   ExpectBoundaryBitsOnOpenEdgesOnly(out);
   EXPECT_EQ(EulerCharacteristic(out), 0);
@@ -694,6 +696,7 @@ TEST(Simplifier, AMoebiusStripSimplifiesWithItsTrianglesTurnedAtRandom)
   const SimplifyResult result = Simplify(mesh, 1, OneRegion(), { std::uint32_t(n) });
   EXPECT_TRUE(result.QuotasMet()) << TriangleTotal(result) << " triangles";
   EXPECT_LT(result.Error, 0.02);
+  EXPECT_TRUE(result.FacingAtRandom);
   ExpectBoundaryBitsOnOpenEdgesOnly(Joined(result));
 }
 

@@ -583,6 +583,12 @@ TEST_F(Construction, TrianglesFacingEitherWaySimplifyWithoutACrack)
   std::remove(referencePath.c_str());
   const atp::ConstructionStats& stats = builder->GetConstructionStats();
   EXPECT_EQ(stats.QuotaMisses, reference->GetConstructionStats().QuotaMisses);
+  // Built, but its normals are noise and its winding shades speckled: the user is told.
+  EXPECT_GT(stats.DiamondsFacingAtRandom, stats.Diamonds / 2);
+  EXPECT_NE(std::string(builder->GetWarningMessage()).find("wound either way"), std::string::npos)
+    << builder->GetWarningMessage();
+  EXPECT_EQ(reference->GetConstructionStats().DiamondsFacingAtRandom, 0u);
+  EXPECT_STREQ(reference->GetWarningMessage(), "");
   EXPECT_LT(double(stats.StoredTriangles), 1.01 * double(reference->GetConstructionStats().StoredTriangles));
   const atp::ModelFile model = atp::ModelFile::Open(path);
   EXPECT_LT(atp::ExtractCut(model, atp::SelectLevel(model, 0)).TriangleCount(), 6u * 150)

@@ -233,6 +233,7 @@ TEST(PatchJob, MalformedMessagesAreRefused)
   made.Collapses = 4321;
   made.TrianglesOverQuotas = 12345;
   made.PiecesRemoved = 678;
+  made.FacingAtRandom = true;
   made.RepeatedTrianglesDropped = 91;
   made.Cpu = { 0.25, 1.5, 0.75 };
   atp::EncodeResult(made, message);
@@ -242,17 +243,27 @@ TEST(PatchJob, MalformedMessagesAreRefused)
     EXPECT_EQ(back.Collapses, 4321u);
     EXPECT_EQ(back.TrianglesOverQuotas, 12345u);
     EXPECT_EQ(back.PiecesRemoved, 678u);
+    EXPECT_TRUE(back.FacingAtRandom);
     EXPECT_EQ(back.RepeatedTrianglesDropped, 91u);
     EXPECT_EQ(back.Cpu.Prepare, 0.25);
     EXPECT_EQ(back.Cpu.Simplify, 1.5);
     EXPECT_EQ(back.Cpu.Encode, 0.75);
+  }
+  {
+    // The flag is a byte of 0 or 1, before the repeated triangles and the CPU times.
+    std::vector<std::uint8_t> corrupt = message;
+    std::uint8_t& flag = corrupt[corrupt.size() - sizeof(atp::JobCpuSeconds) - sizeof(std::uint64_t) - 1];
+    ASSERT_EQ(flag, 1u);
+    flag = 2;
+    atp::PatchJobResult back;
+    EXPECT_THROW(atp::DecodeResult(corrupt.data(), corrupt.size(), back), std::runtime_error);
   }
   // Decoding past a changed field would fail mid-build: a result's fields change only with
   // MessageVersion in atpPatchJobMessages.cxx (bump it, then this size).
   atp::PatchJobResult empty;
   std::vector<std::uint8_t> emptyMessage;
   atp::EncodeResult(empty, emptyMessage);
-  EXPECT_EQ(emptyMessage.size(), 72u);
+  EXPECT_EQ(emptyMessage.size(), 73u);
   ExpectOnlyTheWholeMessageDecodes(message, [](const std::vector<std::uint8_t>& m) {
     atp::PatchJobResult decoded;
     atp::DecodeResult(m.data(), m.size(), decoded);

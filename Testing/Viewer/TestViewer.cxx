@@ -47,6 +47,7 @@
 #include <memory>
 #include <cmath>
 #include <fstream>
+#include <random>
 #include <unistd.h>
 
 namespace
@@ -427,6 +428,51 @@ TEST(Viewer, ABuildCanBeCancelledAndABadMeshIsAnError)
   EXPECT_TRUE(box->text().contains("broken.ply")) << box->text().toStdString();
   EXPECT_NE(::access(model.c_str(), F_OK), 0);
   ::unlink(mesh.c_str());
+}
+
+// A mesh whose triangles are wound either way at random builds, and the window says what is
+// wrong with it.
+TEST(Viewer, ABuildWithAWarningShowsIt)
+{
+  const std::string mesh = TempPath("turned.obj");
+  {
+    std::ofstream obj(mesh);
+    const int nu = 160, nv = 80; // several leaves at the default capacity, so diamonds above them
+    for (int j = 0; j < nv; ++j)
+    {
+      for (int i = 0; i < nu; ++i)
+      {
+        const double u = 2 * M_PI * i / nu, v = 2 * M_PI * j / nv;
+        obj << "v " << (1 + 0.4 * std::cos(v)) * std::cos(u) << ' ' << (1 + 0.4 * std::cos(v)) * std::sin(u)
+            << ' ' << 0.4 * std::sin(v) << '\n';
+      }
+    }
+    std::mt19937 random(7);
+    const auto corner = [&](int i, int j) { return (j % nv) * nu + i % nu + 1; };
+    for (int j = 0; j < nv; ++j)
+    {
+      for (int i = 0; i < nu; ++i)
+      {
+        for (const std::array<int, 3> t : { std::array<int, 3>{ corner(i, j), corner(i + 1, j), corner(i + 1, j + 1) },
+               std::array<int, 3>{ corner(i, j), corner(i + 1, j + 1), corner(i, j + 1) } })
+        {
+          const bool turn = random() % 2 == 1;
+          obj << "f " << t[0] << ' ' << t[turn ? 2 : 1] << ' ' << t[turn ? 1 : 2] << '\n';
+        }
+      }
+    }
+  }
+  Viewer viewer;
+  const std::string model = TempPath("turned.atp");
+  viewer->BuildModel(QString::fromStdString(mesh), QString::fromStdString(model));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !viewer->Building(); }, 120000));
+  EXPECT_EQ(ErrorBox(viewer.Window.get()), nullptr);
+  auto* box = viewer->findChild<QMessageBox*>("warningMessage");
+  ASSERT_NE(box, nullptr) << "no warning shown";
+  EXPECT_TRUE(box->text().contains("wound either way")) << box->text().toStdString();
+  ASSERT_TRUE(viewer.WaitUntilConverged()) << "the model opens all the same";
+  ::unlink(mesh.c_str());
+  ::unlink(model.c_str());
 }
 
 /// A distance field around the centre of a 24^3 grid, as VTK image data: its isosurface at 8
