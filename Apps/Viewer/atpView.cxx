@@ -140,6 +140,9 @@ int main(int argc, char** argv)
       status = 1;
       application.exit(1);
     });
+    QObject::connect(&window, &atp::ViewerWindow::WarningShown, [](const QString& message) {
+      std::fprintf(stderr, "atp view: warning: %s\n", message.toLocal8Bit().constData());
+    });
   }
   const auto saveWhenConverged = [&] {
     auto* poll = new QTimer(&window);

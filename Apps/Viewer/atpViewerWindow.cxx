@@ -158,11 +158,13 @@ void ViewerWindow::CreateActions()
 void ViewerWindow::ShowError(const QString& title, const QString& message)
 {
   ShowMessageBox(QMessageBox::Critical, "errorMessage", title, message);
+  emit ErrorShown(message);
 }
 
 void ViewerWindow::ShowWarning(const QString& title, const QString& message)
 {
   ShowMessageBox(QMessageBox::Warning, "warningMessage", title, message);
+  emit WarningShown(message);
 }
 
 void ViewerWindow::ShowMessageBox(
@@ -174,7 +176,6 @@ void ViewerWindow::ShowMessageBox(
   box->setObjectName(name);
   box->setAttribute(Qt::WA_DeleteOnClose);
   box->open();
-  emit ErrorShown(message);
 }
 
 void ViewerWindow::OpenFile(const QString& path, const QString& model, double isoValue)

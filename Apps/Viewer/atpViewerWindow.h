@@ -78,6 +78,8 @@ signals:
   void PlaybackFinished();
   /// An error was shown to the user (the message box's text).
   void ErrorShown(const QString& message);
+  /// A warning was shown to the user; the window goes on as before.
+  void WarningShown(const QString& message);
 
 protected:
   void closeEvent(QCloseEvent* event) override;

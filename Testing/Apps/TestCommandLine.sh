@@ -34,27 +34,11 @@ expect 0 '"bytes_per_input_triangle"' -- "$atp" info --json "$work/x.atp"
 expect 0 '"cache_order": "best"' -- "$atp" info --json "$work/x.atp"
 expect 0 "done: " -- "$atp" build "$data/bumpy-torus.ply" -o "$work/fast.atp" --quiet --fast-cache-order
 
-# A torus of 80 x 40 quads as OBJ; with an argument of 1, each triangle wound either way at random.
-torus_obj() {
-  awk -v turn="$1" 'BEGIN {
-    srand(7); nu = 80; nv = 40; pi = 3.14159265358979
-    for (j = 0; j < nv; ++j) for (i = 0; i < nu; ++i) {
-      u = 2 * pi * i / nu; v = 2 * pi * j / nv
-      printf "v %.6f %.6f %.6f\n", (1 + 0.4 * cos(v)) * cos(u), (1 + 0.4 * cos(v)) * sin(u), 0.4 * sin(v)
-    }
-    for (j = 0; j < nv; ++j) for (i = 0; i < nu; ++i) {
-      a = j * nu + i + 1; b = j * nu + (i + 1) % nu + 1
-      c = ((j + 1) % nv) * nu + (i + 1) % nu + 1; d = ((j + 1) % nv) * nu + i + 1
-      if (turn && rand() < 0.5) printf "f %d %d %d\n", a, c, b; else printf "f %d %d %d\n", a, b, c
-      if (turn && rand() < 0.5) printf "f %d %d %d\n", a, d, c; else printf "f %d %d %d\n", a, c, d
-    }
-  }'
-}
 # Triangles wound at random build, with a warning after the figures; wound one way, none.
-torus_obj 1 > "$work/turned.obj"
+torus_obj 1 80 40 > "$work/turned.obj"
 expect 0 "atp build: warning: the input's triangles are wound either way at random \(in [0-9]+ of [0-9]+ diamonds\)" -- "$atp" build "$work/turned.obj" -o "$work/turned.atp" --quiet --leaf-capacity 500
 [[ "$(tail -n 1 <<<"$out")" == "atp build: warning: "* ]] || fail "the warning should follow the figures: $out"
-torus_obj 0 > "$work/facing-out.obj"
+torus_obj 0 80 40 > "$work/facing-out.obj"
 expect 0 "done: " -- "$atp" build "$work/facing-out.obj" -o "$work/facing-out.atp" --quiet --leaf-capacity 500
 grep -q "warning" <<<"$out" && fail "a torus wound one way was warned about: $out"
 rm -f "$work/turned.obj" "$work/turned.atp" "$work/facing-out.obj" "$work/facing-out.atp"

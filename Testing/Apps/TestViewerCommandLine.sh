@@ -48,6 +48,11 @@ expect 0 "" -- "$atp" view "$data/bumpy-torus.ply" -o "$work/built.atp" --size 3
   --screenshot "$work/built.png"
 is_png "$work/built.png"
 [ -s "$work/built.atp" ] && passed=$((passed + 1)) || fail "no model built from the mesh"
+# A mesh that builds with a warning: told on stderr, and the session goes on to its screenshot.
+torus_obj 1 160 80 > "$work/turned.obj"
+expect 0 "^atp view: warning: the input's triangles are wound either way at random" -- \
+  "$atp" view "$work/turned.obj" -o "$work/turned.atp" --size 320x240 --screenshot "$work/turned.png"
+is_png "$work/turned.png"
 
 # Mistakes a user can make: one line naming the file, exit code 1, no screenshot.
 head -c 3000 "$work/torus.atp" >"$work/truncated.atp"

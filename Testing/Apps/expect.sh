@@ -29,3 +29,21 @@ fail() {
   echo "FAIL: $1"
   failures=$((failures + 1))
 }
+
+# torus_obj TURN NU NV: a torus of NU x NV quads as OBJ on stdout; with TURN 1, each triangle
+# wound either way at random.
+torus_obj() {
+  awk -v turn="$1" -v nu="$2" -v nv="$3" 'BEGIN {
+    srand(7); pi = 3.14159265358979
+    for (j = 0; j < nv; ++j) for (i = 0; i < nu; ++i) {
+      u = 2 * pi * i / nu; v = 2 * pi * j / nv
+      printf "v %.6f %.6f %.6f\n", (1 + 0.4 * cos(v)) * cos(u), (1 + 0.4 * cos(v)) * sin(u), 0.4 * sin(v)
+    }
+    for (j = 0; j < nv; ++j) for (i = 0; i < nu; ++i) {
+      a = j * nu + i + 1; b = j * nu + (i + 1) % nu + 1
+      c = ((j + 1) % nv) * nu + (i + 1) % nu + 1; d = ((j + 1) % nv) * nu + i + 1
+      if (turn && rand() < 0.5) printf "f %d %d %d\n", a, c, b; else printf "f %d %d %d\n", a, b, c
+      if (turn && rand() < 0.5) printf "f %d %d %d\n", a, d, c; else printf "f %d %d %d\n", a, c, d
+    }
+  }'
+}
