@@ -11,11 +11,14 @@ namespace atp
 
 namespace
 {
-// A page: u16 corner count, u16 triangle count, the corners from the front, the triangles
-// (3 x u16 corner numbers, u8 boundary bits) from the back.
+// A page: u16 corner count, u16 triangle count, the corners (position, normal, input uses, and
+// color when the input has colors) from the front, the triangles (3 x u16 corner numbers, u8
+// boundary bits) from the back.
 constexpr std::size_t PageHeaderBytes = 4;
 constexpr std::size_t TriangleBytes = 7;
 constexpr std::size_t PositionNormalBytes = 3 * sizeof(float) + 2 * sizeof(std::int16_t);
+/// A corner without color: its position, normal and input uses (SoupTriangle::InputUses).
+constexpr std::size_t PlainCornerBytes = PositionNormalBytes + 1;
 /// Corners of a page, at most: the page full of corners alone.
 constexpr std::size_t MaxPageCorners = BucketStore::PageBytes / PositionNormalBytes;
 /// Slots of a frame's corner table: a power of two at least twice the corners.
@@ -47,7 +50,7 @@ BucketStore::BucketStore(const std::string& scratchDirectory, std::size_t memory
   : Disk(scratchDirectory)
   , Buckets(scratchDirectory)
   , LastTriangles(LastTriangleSlots)
-  , CornerBytes(PositionNormalBytes + (colors ? 4 : 0))
+  , CornerBytes(PlainCornerBytes + (colors ? 4 : 0))
   , Pages(scratchDirectory)
 {
   // At least a handful of frames so that a split (one bucket read, two appended) always fits.
@@ -255,7 +258,8 @@ BucketStore::Corner BucketStore::CornerOf(const SoupTriangle& triangle, int k) c
 #else
   corner.High = std::uint64_t(z) << 32 | normal;
 #endif
-  if (CornerBytes > PositionNormalBytes)
+  corner.Uses = triangle.InputUses[k];
+  if (CornerBytes > PlainCornerBytes)
   {
     std::memcpy(&corner.Color, triangle.Colors[k], sizeof(corner.Color));
   }
@@ -267,9 +271,10 @@ BucketStore::Corner BucketStore::CornerAt(const unsigned char* bytes) const
   Corner corner;
   std::memcpy(&corner.Low, bytes, sizeof(corner.Low));
   std::memcpy(&corner.High, bytes + sizeof(corner.Low), sizeof(corner.High));
-  if (CornerBytes > PositionNormalBytes)
+  corner.Uses = bytes[PositionNormalBytes];
+  if (CornerBytes > PlainCornerBytes)
   {
-    std::memcpy(&corner.Color, bytes + PositionNormalBytes, sizeof(corner.Color));
+    std::memcpy(&corner.Color, bytes + PlainCornerBytes, sizeof(corner.Color));
   }
   return corner;
 }
@@ -315,9 +320,10 @@ int BucketStore::CornerIndex(std::size_t frame, const Corner& corner)
   unsigned char* bytes = page + PageHeaderBytes + corners * CornerBytes;
   std::memcpy(bytes, &corner.Low, sizeof(corner.Low));
   std::memcpy(bytes + sizeof(corner.Low), &corner.High, sizeof(corner.High));
-  if (CornerBytes > PositionNormalBytes)
+  bytes[PositionNormalBytes] = corner.Uses;
+  if (CornerBytes > PlainCornerBytes)
   {
-    std::memcpy(bytes + PositionNormalBytes, &corner.Color, sizeof(corner.Color));
+    std::memcpy(bytes + PlainCornerBytes, &corner.Color, sizeof(corner.Color));
   }
   PutU16(page, std::uint16_t(corners + 1));
   table[slot] = std::uint16_t(corners + 1);
@@ -462,7 +468,6 @@ void BucketStore::Unpack(const unsigned char* page, std::vector<SoupTriangle>& o
     SoupTriangle triangle;
     std::memset(&triangle, 255, sizeof(triangle)); // colors not kept read back opaque white
     triangle.BoundaryEdges = record[6];
-    std::fill(std::begin(triangle.Padding), std::end(triangle.Padding), std::uint8_t(0));
     for (int k = 0; k < 3; ++k)
     {
       const std::size_t c = GetU16(record + 2 * k);
@@ -473,9 +478,10 @@ void BucketStore::Unpack(const unsigned char* page, std::vector<SoupTriangle>& o
       const unsigned char* corner = page + PageHeaderBytes + c * CornerBytes;
       std::memcpy(triangle.V[k], corner, 3 * sizeof(float));
       std::memcpy(triangle.Normals[k], corner + 3 * sizeof(float), 2 * sizeof(std::int16_t));
-      if (CornerBytes > PositionNormalBytes)
+      triangle.InputUses[k] = corner[PositionNormalBytes];
+      if (CornerBytes > PlainCornerBytes)
       {
-        std::memcpy(triangle.Colors[k], corner + PositionNormalBytes, sizeof(triangle.Colors[k]));
+        std::memcpy(triangle.Colors[k], corner + PlainCornerBytes, sizeof(triangle.Colors[k]));
       }
     }
     out.push_back(triangle);

@@ -104,9 +104,10 @@ private:
   {
     std::uint64_t Low = 0, High = 0;
     std::uint32_t Color = 0;
+    std::uint8_t Uses = 0;
     bool operator==(const Corner& o) const
     {
-      return Low == o.Low && High == o.High && Color == o.Color;
+      return Low == o.Low && High == o.High && Color == o.Color && Uses == o.Uses;
     }
   };
   static constexpr PageIndex NoPage = ~PageIndex(0);

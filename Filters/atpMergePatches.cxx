@@ -14,8 +14,10 @@ PatchMesh MergePatches(
   std::size_t triangleCount = 0;
   bool normals = false;
   bool colors = false;
+  bool uses = false;
   for (const PatchMesh* p : patches)
   {
+    uses = uses || !p->InputUses.empty();
     vertexCount += p->VertexCount();
     triangleCount += p->TriangleCount();
     normals = normals || !p->Normals.empty();
@@ -29,6 +31,8 @@ PatchMesh MergePatches(
   out.Colors.resize(colors ? 4 * vertexCount : 0);
   out.Indices.resize(3 * triangleCount);
   out.BoundaryEdges.resize(triangleCount);
+  out.InputUses.assign(uses ? vertexCount : 0, 0);
+  out.CornerUses.resize(uses ? 3 * triangleCount : 0);
   std::size_t triangles = 0;
   PositionWelder welder(vertexCount, out.Positions.data());
   std::vector<std::uint32_t> remap;
@@ -56,6 +60,10 @@ PatchMesh MergePatches(
         const std::uint8_t white[4] = { 255, 255, 255, 255 };
         std::copy_n(p->HasColors() ? &p->Colors[4 * v] : white, 4, &out.Colors[4 * std::size_t(w)]);
       }
+      if (!p->InputUses.empty())
+      {
+        out.InputUses[w] = std::max(out.InputUses[w], p->InputUses[v]);
+      }
       remap[v] = w;
     }
     for (std::size_t t = 0; t < p->TriangleCount(); ++t)
@@ -70,6 +78,11 @@ PatchMesh MergePatches(
       out.Indices[3 * triangles] = a;
       out.Indices[3 * triangles + 1] = b;
       out.Indices[3 * triangles + 2] = c;
+      for (int k = 0; k < 3 && uses; ++k)
+      {
+        // A patch without counts stands for nothing: its vertices' counts fall short.
+        out.CornerUses[3 * triangles + std::size_t(k)] = p->CornerUses.empty() ? 0 : p->CornerUses[3 * t + std::size_t(k)];
+      }
       out.BoundaryEdges[triangles++] = t < p->BoundaryEdges.size() ? p->BoundaryEdges[t] : 0;
       if (trianglePatch)
       {
@@ -81,6 +94,8 @@ PatchMesh MergePatches(
   out.Positions.resize(3 * vertices);
   out.Normals.resize(normals ? 3 * vertices : 0);
   out.Colors.resize(colors ? 4 * vertices : 0);
+  out.InputUses.resize(uses ? vertices : 0);
+  out.CornerUses.resize(uses ? 3 * triangles : 0);
   out.Indices.resize(3 * triangles);
   out.BoundaryEdges.resize(triangles);
   return out;

@@ -99,6 +99,8 @@ PatchMesh WeldSoup(const std::vector<SoupTriangle>& soup, bool colors, std::uint
   mesh.Positions.resize(3 * corners);
   mesh.Normals.resize(3 * corners);
   mesh.Colors.resize(colors ? 4 * corners : 0);
+  mesh.InputUses.assign(corners, 0);
+  mesh.CornerUses.reserve(corners);
   mesh.Indices.reserve(corners);
   mesh.BoundaryEdges.reserve(soup.size());
   PositionWelder welder(corners, mesh.Positions.data());
@@ -118,6 +120,8 @@ PatchMesh WeldSoup(const std::vector<SoupTriangle>& soup, bool colors, std::uint
       {
         std::copy_n(t.Colors[c], 4, &mesh.Colors[4 * std::size_t(v[c])]);
       }
+      // Unwelded input gives one position several vertices, each counted alone.
+      mesh.InputUses[v[c]] = std::max(mesh.InputUses[v[c]], t.InputUses[c]);
     }
     if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0])
     {
@@ -130,11 +134,13 @@ PatchMesh WeldSoup(const std::vector<SoupTriangle>& soup, bool colors, std::uint
     }
     mesh.Indices.insert(mesh.Indices.end(), v, v + 3);
     mesh.BoundaryEdges.push_back(t.BoundaryEdges);
+    mesh.CornerUses.insert(mesh.CornerUses.end(), 3, 1); // each stands for itself
   }
   const std::size_t vertices = welder.Count();
   mesh.Positions.resize(3 * vertices);
   mesh.Normals.resize(3 * vertices);
   mesh.Colors.resize(colors ? 4 * vertices : 0);
+  mesh.InputUses.resize(vertices);
   return mesh;
 }
 

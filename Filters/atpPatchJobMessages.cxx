@@ -13,9 +13,10 @@ namespace
 /// sizes of the shipped types count themselves). 1: the first; 2: a result carries the
 /// triangles over its quotas instead of a flag; 3: and the closed pieces removed; 4: and the
 /// CPU time of its steps; 5: the context carries the cache order; 6: a result carries the
-/// repeated triangles dropped; 7: and whether its triangles face either way at random.
+/// repeated triangles dropped; 7: and whether its triangles face either way at random; 8: a
+/// mesh carries its input uses (PatchMesh::InputUses, CornerUses).
 /// TestPatchJob pins a result message's size.
-constexpr std::uint64_t MessageVersion = 7;
+constexpr std::uint64_t MessageVersion = 8;
 static_assert(sizeof(JobCpuSeconds) == 3 * sizeof(double),
   "a step added to JobCpuSeconds changes the result message: bump MessageVersion");
 
@@ -59,6 +60,8 @@ public:
     PutArray(mesh.Colors);
     PutArray(mesh.Indices);
     PutArray(mesh.BoundaryEdges);
+    PutArray(mesh.InputUses);
+    PutArray(mesh.CornerUses);
   }
 
 private:
@@ -115,6 +118,13 @@ public:
     GetArray(mesh.Colors);
     GetArray(mesh.Indices);
     GetArray(mesh.BoundaryEdges);
+    GetArray(mesh.InputUses);
+    GetArray(mesh.CornerUses);
+    // Read per vertex and per corner wherever they are not empty.
+    if (!mesh.UsesSized())
+    {
+      Fail();
+    }
   }
 
   /// A count of things that each take at least `minimumBytes`: checked before allocating.
@@ -161,7 +171,7 @@ private:
 };
 
 /// The five counts of an encoded mesh.
-constexpr std::size_t MeshMinimumBytes = 5 * sizeof(std::uint64_t);
+constexpr std::size_t MeshMinimumBytes = 7 * sizeof(std::uint64_t);
 
 } // namespace
 

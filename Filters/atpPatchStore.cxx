@@ -14,7 +14,7 @@ struct Counts
   std::uint32_t Vertices;
   std::uint32_t Triangles;
   std::uint32_t HasColors;
-  std::uint32_t Padding;
+  std::uint32_t HasUses; ///< PatchMesh::InputUses and CornerUses follow the boundary bits
 };
 
 /// Patches of fewer vertices store 16-bit indices.
@@ -49,15 +49,16 @@ PatchStore::PatchStore(const std::string& scratchDirectory)
 
 // The record: counts, positions, normals as EncodeNormal's 2 x int16 (every normal here was
 // decoded from that encoding, and decoding what it encodes gives the same floats: lossless at a
-// third of the bytes), colors, indices (16 bits when they fit), boundary bits.
+// third of the bytes), colors, indices (16 bits when they fit), boundary bits, input uses.
 PatchStore::Handle PatchStore::Put(const PatchMesh& patch)
 {
   const std::size_t vertices = patch.VertexCount(), indices = patch.Indices.size();
   const bool shortIndices = vertices <= ShortIndexVertices;
   const Counts counts{ std::uint32_t(vertices), std::uint32_t(patch.TriangleCount()),
-    std::uint32_t(patch.HasColors()), 0 };
+    std::uint32_t(patch.HasColors()), std::uint32_t(!patch.InputUses.empty()) };
   std::vector<std::uint8_t> bytes(sizeof(counts) + vertices * (3 * sizeof(float) + 4) +
-    patch.Colors.size() + indices * (shortIndices ? 2 : 4) + patch.BoundaryEdges.size());
+    patch.Colors.size() + indices * (shortIndices ? 2 : 4) + patch.BoundaryEdges.size() +
+    patch.InputUses.size() + patch.CornerUses.size());
   std::uint8_t* at = Copy(bytes.data(), &counts, 1);
   at = Copy(at, patch.Positions.data(), patch.Positions.size());
   std::vector<std::int16_t> normals(2 * vertices);
@@ -76,7 +77,9 @@ PatchStore::Handle PatchStore::Put(const PatchMesh& patch)
   {
     at = Copy(at, patch.Indices.data(), indices);
   }
-  Copy(at, patch.BoundaryEdges.data(), patch.BoundaryEdges.size());
+  at = Copy(at, patch.BoundaryEdges.data(), patch.BoundaryEdges.size());
+  at = Copy(at, patch.InputUses.data(), patch.InputUses.size());
+  Copy(at, patch.CornerUses.data(), patch.CornerUses.size());
   const Handle handle{ End, bytes.size() };
   File.WriteAt(End, bytes.data(), bytes.size());
   End += bytes.size();
@@ -112,7 +115,9 @@ void PatchStore::Get(const Handle& handle, PatchMesh& out) const
   {
     at = Take(at, indices, out.Indices);
   }
-  Take(at, std::size_t(counts.Triangles), out.BoundaryEdges);
+  at = Take(at, std::size_t(counts.Triangles), out.BoundaryEdges);
+  at = Take(at, counts.HasUses ? vertices : 0, out.InputUses);
+  Take(at, counts.HasUses ? indices : 0, out.CornerUses);
 }
 
 void PatchStore::Release(const Handle& handle)

@@ -144,10 +144,14 @@ inline std::uint32_t Restamp(std::uint32_t& mark, std::uint32_t stamp)
 struct Face
 {
   std::uint32_t V[3];
-  int Region = 0;
+  std::int16_t Region = 0; ///< 16 bits (CheckedRegionCount): a diamond has at most 8 members
   std::uint8_t Bits = 0; ///< BoundaryEdges: bit k (3 + k) for the edge from corner k to k + 1
   std::uint8_t Removed = 0;
+  /// PatchMesh::CornerUses, here rather than in an array of their own: a collapse rewrites
+  /// them for every triangle of the moved vertex's fan, whose records it reads anyway.
+  std::uint8_t Uses[3] = { 0, 0, 0 };
 };
+static_assert(sizeof(Face) == 20, "a face record stays 20 bytes");
 
 /// Where a vertex's fan lies in the corner pool.
 struct FanSlice
@@ -328,6 +332,14 @@ private:
     out.resize(live);
   }
   void FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, std::uint32_t w);
+  /// For a triangle t = (u, v, w) that u -> v removes: the triangle across w-u (around u, not
+  /// holding v), which takes the edge v-w over, and the one across v-w (around v, not holding
+  /// u); None where there is none. Fan must hold u's fan.
+  void TrianglesAcross(std::uint32_t t, std::uint32_t u, std::uint32_t v, std::uint32_t w,
+    std::uint32_t& acrossWU, std::uint32_t& acrossVW) const;
+  /// The input triangles t stands for at v and at w go to the triangle that takes its edge
+  /// v-w over (PatchMesh::CornerUses), once u has moved onto v.
+  void HandOverUses(std::uint32_t t, std::uint32_t v, std::uint32_t w, std::uint32_t heir);
   int RegionOf(const double point[3], int likely) const;
   /// The region of a triangle with corners a, b, c when all three lie deep in it
   /// (SimplifyOptions::DeepRegionOf), else -1: regionOf must then be asked.
@@ -464,6 +476,10 @@ private:
   };
   std::vector<VertexMarks> Marks;
   std::vector<int> RegionFollowing, RegionPreceding;
+  /// Whether the input counts its uses (PatchMesh::CornerUses, kept in Face::Uses), and then
+  /// per vertex whether its input triangles are not all here (VerticesUsedElsewhere).
+  bool TracksUses = false;
+  std::vector<std::uint8_t> UsedElsewhere;
   std::uint32_t StampU = 0, StampV = 0;
 };
 
@@ -473,6 +489,10 @@ std::size_t CheckedRegionCount(int regionCount, const std::vector<std::uint32_t>
   if (regionCount < 1 || quotas.size() != std::size_t(regionCount))
   {
     throw std::invalid_argument("Simplify: need one quota per region");
+  }
+  if (regionCount > INT16_MAX)
+  {
+    throw std::invalid_argument("Simplify: more regions than 16 bits hold");
   }
   return std::size_t(regionCount);
 }
@@ -493,12 +513,22 @@ Simplifier::Simplifier(const PatchMesh& mesh, int regionCount, const RegionFunct
   {
     throw std::invalid_argument("Simplify: a mesh of 2^30 triangles or more");
   }
+  if (!mesh.UsesSized())
+  {
+    throw std::invalid_argument("Simplify: input uses not sized per vertex and corner");
+  }
   Faces.resize(TriangleCount);
   for (std::size_t t = 0; t < TriangleCount; ++t)
   {
     std::copy_n(&mesh.Indices[3 * t], 3, Faces[t].V);
     Faces[t].Bits = t < mesh.BoundaryEdges.size() ? mesh.BoundaryEdges[t] : 0;
   }
+  TracksUses = !mesh.CornerUses.empty();
+  for (std::size_t t = 0; t < TriangleCount && TracksUses; ++t)
+  {
+    std::copy_n(&mesh.CornerUses[3 * t], 3, Faces[t].Uses);
+  }
+  UsedElsewhere = VerticesUsedElsewhere(mesh);
 
   double lo[3] = { 1e300, 1e300, 1e300 };
   double hi[3] = { -1e300, -1e300, -1e300 };
@@ -754,6 +784,8 @@ void Simplifier::Classify(std::uint32_t u)
       Faces[t].Bits &= std::uint8_t(~(1u << PrevCorner(k)));
     }
   }
+  // More sheets elsewhere on one of its edges, which looks inner here: it stays.
+  locked = locked || (!UsedElsewhere.empty() && UsedElsewhere[u]);
   if (locked || (open != 0 && open != 2))
   {
     return;
@@ -822,6 +854,7 @@ bool Simplifier::OrientConsistently()
         {
           std::swap(face.V[1], face.V[2]);
           face.Bits = FlippedBits(face.Bits);
+          std::swap(face.Uses[1], face.Uses[2]);
           Flipped[other] = 1;
           flipped = true;
         }
@@ -1316,20 +1349,7 @@ void Simplifier::FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, 
     return; // the usual interior case: nothing to carry
   }
   std::uint32_t acrossWU = None, acrossVW = None;
-  for (std::uint32_t c : Fan)
-  {
-    const std::uint32_t s = TriangleOf(c);
-    if (s != t && !Contains(s, v) && Contains(s, w))
-    {
-      acrossWU = s;
-    }
-  }
-  ForEachCorner(v, [&](std::uint32_t s, int) {
-    if (s != t && !Contains(s, u) && Contains(s, w))
-    {
-      acrossVW = s;
-    }
-  });
+  TrianglesAcross(t, u, v, w, acrossWU, acrossVW);
   if (acrossWU != None && acrossVW == None && openVW)
   {
     Faces[acrossWU].Bits |= std::uint8_t(1u << EdgeBit(acrossWU, u, w));
@@ -1345,6 +1365,38 @@ void Simplifier::FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, 
   if (acrossVW != None && acrossWU == None && openWU)
   {
     Faces[acrossVW].Bits |= std::uint8_t(1u << EdgeBit(acrossVW, v, w));
+  }
+}
+
+void Simplifier::TrianglesAcross(std::uint32_t t, std::uint32_t u, std::uint32_t v,
+  std::uint32_t w, std::uint32_t& acrossWU, std::uint32_t& acrossVW) const
+{
+  acrossWU = None;
+  acrossVW = None;
+  for (std::uint32_t c : Fan)
+  {
+    const std::uint32_t s = TriangleOf(c);
+    if (s != t && !Contains(s, v) && Contains(s, w))
+    {
+      acrossWU = s;
+    }
+  }
+  ForEachCorner(v, [&](std::uint32_t s, int) {
+    if (s != t && !Contains(s, u) && Contains(s, w))
+    {
+      acrossVW = s;
+    }
+  });
+}
+
+void Simplifier::HandOverUses(std::uint32_t t, std::uint32_t v, std::uint32_t w, std::uint32_t heir)
+{
+  for (const std::uint32_t x : { v, w })
+  {
+    const int from = Faces[t].V[0] == x ? 0 : (Faces[t].V[1] == x ? 1 : 2);
+    const int to = Faces[heir].V[0] == x ? 0 : (Faces[heir].V[1] == x ? 1 : 2);
+    std::uint8_t& uses = Faces[heir].Uses[to];
+    uses = std::uint8_t(std::min<unsigned>(ManyInputUses, uses + Faces[t].Uses[from]));
   }
 }
 
@@ -1369,30 +1421,62 @@ void Simplifier::CompactCorners(std::size_t extra)
 // Moves u onto v; Fan holds u's fan and MovedRegions the new region of each of its triangles.
 void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
 {
-  for (std::uint32_t c : Fan)
+  // The removed triangles (u, v, w): two, or one on the boundary, since u's fan is a disk or a
+  // half-disk. Noted without a branch (which ones they are follows no pattern); w is what is
+  // left of the corners once u and v are taken out.
+  std::uint32_t removed[3] = { None, None, None }, third[3] = { None, None, None };
+  int removedCount = 0;
+  for (std::size_t i = 0; i < Fan.size(); ++i)
   {
+    const std::uint32_t t = TriangleOf(Fan[i]);
+    const std::uint32_t* tri = Faces[t].V;
+    const std::uint32_t w = tri[0] ^ tri[1] ^ tri[2] ^ u ^ v;
+    const bool gone = MovedRegions[i] < 0;
     // Only a removed triangle with an open edge has one to carry; most have none, which is
-    // asked first (which of the fan's triangles are removed follows no pattern).
-    const std::uint32_t t = TriangleOf(c);
-    if (Faces[t].Bits != 0 && Contains(t, v))
+    // asked first.
+    if (Faces[t].Bits != 0 && gone)
     {
-      const std::uint32_t* tri = Faces[t].V;
-      const std::uint32_t w = tri[0] != u && tri[0] != v ? tri[0] : (tri[1] != u && tri[1] != v ? tri[1] : tri[2]);
       FixOpenEdge(t, u, v, w);
     }
+    removed[removedCount] = t;
+    third[removedCount] = w;
+    removedCount = std::min(removedCount + int(gone), 2);
   }
+  // The heir of a removed triangle (u, v, w): the moved one across w-u, which takes the edge
+  // v-w over (w lies on two triangles of u's fan); found as the corners move.
+  std::uint32_t heir[2] = { None, None };
   for (std::size_t i = 0; i < Fan.size(); ++i)
   {
     // Removed or moved, without a branch: a removed triangle keeps its corner and region and
     // adds nothing back.
     const std::uint32_t c = Fan[i];
     const std::uint32_t t = TriangleOf(c);
-    const bool removed = MovedRegions[i] < 0;
+    const bool gone = MovedRegions[i] < 0;
+    for (int k = 0; k < 2; ++k)
+    {
+      // Without a branch: which triangle it is follows no pattern.
+      const std::uint32_t* tri = Faces[t].V;
+      const bool holds = (tri[0] == third[k]) | (tri[1] == third[k]) | (tri[2] == third[k]);
+      heir[k] = holds & !gone ? t : heir[k];
+    }
     CountTriangles(Faces[t].Region, -1);
-    Faces[t].Removed = std::uint8_t(removed);
-    VertexAt(c) = removed ? u : v;
-    Faces[t].Region = removed ? Faces[t].Region : MovedRegions[i];
-    CountTriangles(Faces[t].Region, std::int64_t(!removed));
+    Faces[t].Removed = std::uint8_t(gone);
+    VertexAt(c) = gone ? u : v;
+    Faces[t].Uses[CornerSlot(c)] = 0; // it stood for u's, and u is gone
+    Faces[t].Region = gone ? Faces[t].Region : std::int16_t(MovedRegions[i]);
+    CountTriangles(Faces[t].Region, std::int64_t(!gone));
+  }
+  for (int k = 0; k < removedCount && TracksUses; ++k)
+  {
+    if (heir[k] == None) // w-u is open: the triangle across v-w takes it
+    {
+      std::uint32_t acrossWU;
+      TrianglesAcross(removed[k], u, v, third[k], acrossWU, heir[k]);
+    }
+    if (heir[k] != None)
+    {
+      HandOverUses(removed[k], v, third[k], heir[k]);
+    }
   }
   // v's new fan: u's moved corners, then v's own. Compacting moves u's run: Fan is not read
   // after it.
@@ -1579,7 +1663,7 @@ SimplifyResult Simplifier::Run()
   AssignRegions();
   classifyAll();
   // Counted at both triangles of an edge: edges two triangles run the same way, as a share.
-  FacingAtRandom = MisorientedEdges > TriangleCount / 10;
+  FacingAtRandom = MisorientedEdges > TriangleCount / 2;
   if (MisorientedEdges > 0 && OrientConsistently())
   {
     // Where faces turn every which way, the input's vertex normals were summed over faces of
@@ -1855,6 +1939,7 @@ PatchMesh Simplifier::Extract(const std::vector<std::uint32_t>& triangles)
   std::vector<std::uint32_t> used; // input vertex of each output vertex
   out.Indices.resize(3 * triangles.size());
   out.BoundaryEdges.resize(triangles.size());
+  out.CornerUses.reserve(TracksUses ? 3 * triangles.size() : 0);
   for (std::size_t i = 0; i < triangles.size(); ++i)
   {
     const Face& face = Faces[triangles[i]];
@@ -1872,11 +1957,16 @@ PatchMesh Simplifier::Extract(const std::vector<std::uint32_t>& triangles)
       }
       out.Indices[3 * i + std::size_t(k)] = Marks[v].SlotU;
     }
+    for (int k = 0; k < 3 && TracksUses; ++k)
+    {
+      out.CornerUses.push_back(face.Uses[flip && k > 0 ? 3 - k : k]);
+    }
     out.BoundaryEdges[i] = flip ? FlippedBits(face.Bits) : face.Bits;
   }
   out.Positions.resize(3 * used.size());
   out.Normals.resize(normals ? 3 * used.size() : 0);
   out.Colors.resize(colors ? 4 * used.size() : 0);
+  out.InputUses.resize(TracksUses ? used.size() : 0);
   for (std::size_t i = 0; i < used.size(); ++i)
   {
     const std::size_t v = used[i];
@@ -1888,6 +1978,10 @@ PatchMesh Simplifier::Extract(const std::vector<std::uint32_t>& triangles)
     if (colors)
     {
       std::copy_n(&Mesh.Colors[4 * v], 4, &out.Colors[4 * i]);
+    }
+    if (TracksUses)
+    {
+      out.InputUses[i] = Mesh.InputUses[v];
     }
   }
   return out;

@@ -88,7 +88,8 @@ struct SimplifyResult
 /// Deterministic and reentrant: concurrent calls on different meshes are safe. regionOf is
 /// not called when regionCount is 1.
 /// Triangles with a repeated corner are dropped from the input. Throws std::invalid_argument
-/// when quotas.size() != regionCount, regionOf returns a region out of range or the mesh has 2^30
+/// when quotas.size() != regionCount, regionCount is over 32767, the input uses are not sized per
+/// vertex and corner, regionOf returns a region out of range or the mesh has 2^30
 /// triangles or more (a diamond's mesh holds tens of thousands).
 VTKATPFILTERS_EXPORT SimplifyResult Simplify(const PatchMesh& mesh, int regionCount,
   const RegionFunction& regionOf, const std::vector<std::uint32_t>& quotas,

@@ -73,6 +73,7 @@ MeshTriangleSource::MeshTriangleSource(
   , Vertices(this->Mesh->Vertices())
   , Sketch(this->Vertices.Count, scratchDirectory)
   , NormalSums(scratchDirectory, this->Vertices.Count)
+  , InputUses(scratchDirectory, this->Vertices.Count)
 {
   this->CheckVerticesAndBound();
   if (!this->VertexBounds.IsEmpty()) // without vertices no triangle is kept: the mesh is empty
@@ -216,6 +217,8 @@ void MeshTriangleSource::FirstPass()
           {
             sum[a] += weighted[a];
           }
+          std::uint8_t& uses = this->InputUses[corner];
+          uses = std::uint8_t(uses + (uses < ManyInputUses));
         }
       }
     });
@@ -293,6 +296,7 @@ void MeshTriangleSource::BoundResidentMemory()
   }
   this->Sketch.ReleaseResidentPages();
   ReleaseResidentPages(this->NormalSums.Data(), this->NormalSums.Size() * sizeof(this->NormalSums[0]));
+  ReleaseResidentPages(this->InputUses.Data(), this->InputUses.Size());
 }
 
 void MeshTriangleSource::SetCornerNormals(const std::uint32_t triangle[3], SoupTriangle& soup) const
@@ -386,7 +390,10 @@ std::size_t MeshTriangleSource::Read(SoupTriangle* out, std::size_t max)
     }
     this->SetCornerNormals(triangle, soup);
     this->SetCornerColors(triangle, soup);
-    std::memset(soup.Padding, 0, sizeof(soup.Padding));
+    for (int c = 0; c < 3; ++c)
+    {
+      soup.InputUses[c] = this->InputUses[triangle[c]];
+    }
     ++n;
   }
   this->Statistics.TrianglesEmitted += n;

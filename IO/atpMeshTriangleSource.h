@@ -39,7 +39,8 @@ private:
   /// Lets the pages of vertices [first, first + count) that a scan has read leave resident
   /// memory, when the vertex array is a file's mapping.
   void ReleaseVertexPages(std::uint64_t first, std::uint64_t count) const;
-  /// The first pass: boundary sketch and area-weighted vertex normal sums.
+  /// The first pass: boundary sketch, area-weighted vertex normal sums and the triangles per
+  /// vertex.
   void FirstPass();
   /// Gives the check the positions of the vertices on edges the sketch found open.
   void CollectOpenEdgeEnds();
@@ -70,6 +71,8 @@ private:
   BoundarySketch Sketch;
   std::shared_ptr<BoundaryEdgeCheck> Check = std::make_shared<BoundaryEdgeCheck>();
   ScratchArray<std::array<float, 3>> NormalSums;
+  /// Per vertex: the kept triangles that use it, up to ManyInputUses (SoupTriangle::InputUses).
+  ScratchArray<std::uint8_t> InputUses;
   InputStats Statistics;
   std::uint64_t KeptTriangles = 0;
   FanCursor Fans;

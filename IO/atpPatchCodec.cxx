@@ -215,7 +215,8 @@ void CheckMesh(const PatchMesh& mesh)
 {
   const std::size_t vertices = mesh.VertexCount();
   if (mesh.Positions.size() % 3 != 0 || mesh.Normals.size() != mesh.Positions.size() ||
-    (mesh.HasColors() && mesh.Colors.size() != 4 * vertices) || mesh.Indices.size() % 3 != 0)
+    (mesh.HasColors() && mesh.Colors.size() != 4 * vertices) || mesh.Indices.size() % 3 != 0 ||
+    !mesh.UsesSized())
   {
     throw std::invalid_argument("EncodePatch: inconsistent array sizes");
   }
@@ -573,6 +574,13 @@ std::vector<std::uint8_t> EncodePatch(const PatchMesh& mesh, const QuantizationG
   // long runs the vertex codec stores in almost nothing.
   const EdgesByStart edges(indices, vertexCount);
   std::vector<std::uint8_t> border = BorderVertices(edges, indices, vertexCount);
+  // A vertex on an edge of four or more sheets, split between this patch and another
+  // (PatchMesh::UsedElsewhere), is shared as well.
+  const std::vector<std::uint8_t> elsewhere = VerticesUsedElsewhere(mesh);
+  for (std::size_t v = 0; v < elsewhere.size(); ++v)
+  {
+    border[v] |= elsewhere[v];
+  }
   // An input edge of three or more triangles may look inner here, with two of its triangles in
   // this patch, while another patch holds a third: its ends are shared, so stored exactly.
   for (std::size_t t = 0; t < mesh.BoundaryEdges.size() && t < mesh.TriangleCount(); ++t)

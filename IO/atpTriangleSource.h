@@ -3,6 +3,7 @@
 #ifndef atpTriangleSource_h
 #define atpTriangleSource_h
 
+#include "atpPatchMesh.h" // ManyInputUses
 #include "vtkATPIOModule.h" // export macro
 
 #include <array>
@@ -46,7 +47,9 @@ struct SoupTriangle
   /// never move, since a patch holding two of them would take it for an inner edge. Bit 6, from
   /// reading until the check is applied: an edge of the triangle was counted by the check.
   std::uint8_t BoundaryEdges;
-  std::uint8_t Padding[3];
+  /// Per corner: how many of the input's triangles use its vertex, up to ManyInputUses (that
+  /// many or more); 0 where not counted. See PatchMesh::InputUses.
+  std::uint8_t InputUses[3];
   /// Corner colors, RGBA; opaque white when the input has none (the bytes stay deterministic).
   std::uint8_t Colors[3][4];
 };

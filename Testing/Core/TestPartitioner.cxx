@@ -324,7 +324,8 @@ TEST(BucketStore, PagesOfRepeatedCornersFillUp)
 }
 
 // A bucket of a streamed mesh: triangles of a grid, each corner shared by up to 6 of them,
-// take a third of their soup size (52 bytes a triangle without colors).
+// take little more than a third of their soup size (52 bytes a triangle without colors; a
+// corner is 17 bytes: position, normal and input uses).
 TEST(BucketStore, SharedCornersAreStoredOnce)
 {
   BucketStore store("", 1, false);
@@ -342,6 +343,7 @@ TEST(BucketStore, SharedCornersAreStoredOnce)
         for (int k = 0; k < 3; ++k)
         {
           std::memcpy(t.V[k], quad[corners[std::size_t(k)]], sizeof(t.V[k]));
+          t.InputUses[k] = 6; // kept, and a key of the corner like its position
         }
         std::memset(t.Colors, 255, sizeof(t.Colors));
         grid.push_back(t);
@@ -361,7 +363,7 @@ TEST(BucketStore, SharedCornersAreStoredOnce)
   }
   const double bytesPerTriangle = double(store.Stats().PeakScratchBytes) / double(grid.size());
   std::printf("a streamed grid in buckets: %.1f bytes per triangle\n", bytesPerTriangle);
-  EXPECT_LT(bytesPerTriangle, 52.0 / 3);
+  EXPECT_LT(bytesPerTriangle, 18.5);
 }
 
 TEST(Partitioner, RespectsCapacityLosesNothingAndConforms)

@@ -652,6 +652,40 @@ TEST(Simplifier, MisorientedTrianglesAreTurnedWhileSimplifyingAndBackAfter)
   EXPECT_EQ(wrong, 0u) << "of " << judged << " triangles face the other way than they came in";
 }
 
+// The input triangles a vertex's corners stand for (PatchMesh::CornerUses) stay with it through
+// the collapses, whichever region its triangles end in: on a closed torus every vertex left
+// stands for all of its own. A vertex whose counts fall short (as if a sheet on one of its edges
+// lay in another patch) never moves.
+TEST(Simplifier, InputUsesStayWithTheirVerticesAndShortOnesStay)
+{
+  const int nu = 64, nv = 32;
+  PatchMesh mesh = BumpyTorus(nu, nv);
+  mesh.InputUses.assign(mesh.VertexCount(), 0);
+  for (const std::uint32_t v : mesh.Indices)
+  {
+    ++mesh.InputUses[v];
+  }
+  mesh.CornerUses.assign(mesh.Indices.size(), 1);
+  const std::uint32_t shortVertex = 9 * nu + 17;
+  ++mesh.InputUses[shortVertex];
+  const RegionFunction side = [](const double p[3], int) { return p[0] < 0 ? 0 : 1; };
+  const SimplifyResult result = Simplify(mesh, 2, side, { 500, 500 });
+  EXPECT_TRUE(result.QuotasMet());
+  const PatchMesh joined = Joined(result);
+  ASSERT_TRUE(joined.UsesSized());
+  const std::vector<std::uint8_t> elsewhere = VerticesUsedElsewhere(joined);
+  std::size_t found = joined.VertexCount();
+  for (std::uint32_t v = 0; v < joined.VertexCount(); ++v)
+  {
+    found = KeyOf(joined, v) == KeyOf(mesh, shortVertex) ? v : found;
+  }
+  ASSERT_LT(found, joined.VertexCount()) << "the vertex short of its input triangles moved";
+  for (std::size_t v = 0; v < elsewhere.size(); ++v)
+  {
+    ASSERT_EQ(elsewhere[v], v == found ? 1 : 0) << "vertex " << v << " of " << elsewhere.size();
+  }
+}
+
 // A Moebius strip cannot face one way: turning its triangles leaves one seam of edges run the
 // same way by both of their triangles, whose ends stay. Reached breadth first, that seam crosses
 // the strip where the two fronts meet; depth first, it ran along the strip (1,600 triangles with

@@ -703,6 +703,79 @@ TEST_F(Construction, EdgesOfThreeSheetsStayPut)
   std::remove(path.c_str());
 }
 
+// Two closed surfaces through one circle, crossing there like an X: a spindle (two cones) inside
+// and a torus of square section outside. The circle's edges are used four times, an even
+// count, so reading finds no odd edge anywhere, yet a patch holding two of the four sheets
+// takes the circle for an inner line. Its vertices must neither move nor be stored on a
+// coarser grid than in the patch holding the other two sheets.
+TEST_F(Construction, EdgesOfFourSheetsStayPut)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> sheets;
+  const int nu = 160, steps = 40; // around the axis; along each straight piece of a profile
+  std::vector<vtkIdType> circle;
+  for (int i = 0; i < nu; ++i)
+  {
+    const double u = 2 * M_PI * i / nu;
+    circle.push_back(points->InsertNextPoint(std::cos(u), std::sin(u), 0));
+  }
+  // Revolves the profile from the circle through `corners` (radius, height) and back to it, or
+  // to the axis; its triangles face to the left of the profile's direction.
+  const auto revolve = [&](const std::vector<std::array<double, 2>>& corners) {
+    std::vector<std::array<double, 2>> profile;
+    std::array<double, 2> from{ 1, 0 };
+    for (const auto& to : corners)
+    {
+      for (int k = 1; k <= steps; ++k)
+      {
+        profile.push_back({ from[0] + (to[0] - from[0]) * k / steps, from[1] + (to[1] - from[1]) * k / steps });
+      }
+      from = to;
+    }
+    std::vector<vtkIdType> previous = circle;
+    for (const auto& point : profile)
+    {
+      const bool last = &point == &profile.back();
+      const bool closes = last && point[0] == 1; // back on the circle
+      std::vector<vtkIdType> row = closes ? circle : std::vector<vtkIdType>();
+      for (int i = 0; i < nu && !closes && point[0] > 0; ++i)
+      {
+        const double u = 2 * M_PI * i / nu;
+        row.push_back(points->InsertNextPoint(point[0] * std::cos(u), point[0] * std::sin(u), point[1]));
+      }
+      const vtkIdType pole = point[0] == 0 ? points->InsertNextPoint(0, 0, point[1]) : -1;
+      for (int i = 0; i < nu; ++i)
+      {
+        const vtkIdType a = previous[std::size_t(i)], b = previous[std::size_t((i + 1) % nu)];
+        if (pole >= 0)
+        {
+          const vtkIdType t[3] = { a, b, pole };
+          sheets->InsertNextCell(3, t);
+          continue;
+        }
+        const vtkIdType c = row[std::size_t((i + 1) % nu)], d = row[std::size_t(i)];
+        const vtkIdType t0[3] = { a, b, c };
+        const vtkIdType t1[3] = { a, c, d };
+        sheets->InsertNextCell(3, t0);
+        sheets->InsertNextCell(3, t1);
+      }
+      previous = row;
+    }
+  };
+  revolve({ { 0, 1 } });                                // the spindle's upper cone
+  revolve({ { 0, -1 } });                               // and its lower one
+  revolve({ { 1.5, 0.5 }, { 2, 0 }, { 1.5, -0.5 }, { 1, 0 } }); // the torus
+  vtkNew<vtkPolyData> mesh;
+  mesh->SetPoints(points);
+  mesh->SetPolys(sheets);
+  const std::string path = TempPath("four-sheets.atp");
+  ASSERT_EQ(BuildModel(mesh, path, 2, 300, 150), 1);
+  const atp::ModelFile model = atp::ModelFile::Open(path);
+  EXPECT_EQ(model.Header().InputBoundaryEdges, 0u);
+  ExpectEveryLevelCrackFree(model);
+  std::remove(path.c_str());
+}
+
 TEST_F(Construction, SaturatedBoundsAreEqualOverDiamondsAndMonotone)
 {
   const atp::ModelFile model = atp::ModelFile::Open(Path);

@@ -450,6 +450,46 @@ TEST(PatchCodec, FastCacheOrderKeepsTheTrianglesInAnotherGoodOrder)
   EXPECT_LT(fastMisses, 0.6f * input);
 }
 
+// A vertex whose input triangles are not all in the patch (PatchMesh::InputUses over its
+// corners' CornerUses: a sheet elsewhere on one of its edges) is shared with another patch, so
+// it keeps the full grid where the interior is stored coarser.
+TEST(PatchCodec, VerticesUsedElsewhereAreStoredExactly)
+{
+  const atp::QuantizationGrid grid = GridFor(-2, 2);
+  atp::PatchMesh mesh = Terrain(-1.5f, 0.25f, 1.0f, 30, false, 5);
+  Roughen(mesh, 1e-3f);
+  mesh.InputUses.assign(mesh.VertexCount(), 0);
+  for (const std::uint32_t v : mesh.Indices)
+  {
+    ++mesh.InputUses[v];
+  }
+  mesh.CornerUses.assign(mesh.Indices.size(), 1);
+  const std::uint32_t shared = 15 * 31 + 15; // in the middle of the 31 x 31 vertices
+  ++mesh.InputUses[shared];
+  atp::PatchPrecision coarse;
+  coarse.InteriorPositionShift = 9;
+  atp::PatchMesh exact, rounded;
+  atp::EncodePatch(mesh, grid, {}, &exact);
+  atp::EncodePatch(mesh, grid, coarse, &rounded);
+  ASSERT_EQ(exact.Positions.size(), rounded.Positions.size());
+  // Vertices come out in the same order at both precisions: count those that moved, and find
+  // the shared one by its exact position.
+  const std::array<std::uint32_t, 3> key = grid.Quantize(&mesh.Positions[3 * shared]);
+  std::size_t moved = 0, sharedFound = 0;
+  for (std::size_t v = 0; v < exact.VertexCount(); ++v)
+  {
+    const bool same = std::equal(&exact.Positions[3 * v], &exact.Positions[3 * v + 3], &rounded.Positions[3 * v]);
+    moved += !same;
+    if (grid.Quantize(&exact.Positions[3 * v]) == key)
+    {
+      ++sharedFound;
+      EXPECT_TRUE(same) << "the shared vertex was rounded to the interior's grid";
+    }
+  }
+  EXPECT_EQ(sharedFound, 1u);
+  EXPECT_GT(moved, 100u) << "the interior is stored coarser";
+}
+
 /// `mesh` with a disk of `triangles` triangles around one new vertex beside it.
 atp::PatchMesh WithFan(atp::PatchMesh mesh, std::uint32_t triangles)
 {

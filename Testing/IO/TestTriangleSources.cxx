@@ -1180,7 +1180,35 @@ TEST_F(TriangleSources, BoundaryFlagsMarkTheRightEdges)
   ASSERT_EQ(result.Triangles.size(), 2u);
   EXPECT_EQ(result.Triangles[0].BoundaryEdges & 7, 0b011); // 0-1, 1-2 boundary; 2-0 shared
   EXPECT_EQ(result.Triangles[1].BoundaryEdges & 7, 0b110); // 0-2 shared; 2-3, 3-0 boundary
-  EXPECT_EQ(result.Triangles[0].Padding[0], 0);
+  // Each corner carries the triangles that use its vertex.
+  EXPECT_EQ(std::vector<int>(result.Triangles[0].InputUses, result.Triangles[0].InputUses + 3), std::vector<int>({ 2, 1, 2 }));
+  EXPECT_EQ(std::vector<int>(result.Triangles[1].InputUses, result.Triangles[1].InputUses + 3), std::vector<int>({ 2, 2, 1 }));
+}
+
+// How many triangles use each vertex travels with its corners: degenerate triangles do not count,
+// and the count stops at 255.
+TEST_F(TriangleSources, CornersCarryTheTrianglesOfTheirVertex)
+{
+  Mesh fan;
+  fan.Points = { { 0, 0, 0 } };
+  const int rim = 300;
+  for (int i = 0; i < rim; ++i)
+  {
+    fan.Points.push_back({ std::cos(2 * M_PI * i / rim), std::sin(2 * M_PI * i / rim), 0 });
+  }
+  for (int i = 1; i <= rim; ++i)
+  {
+    fan.Faces.push_back({ 0, i, i % rim + 1 });
+  }
+  fan.Faces.push_back({ 1, 1, 2 }); // degenerate: dropped, and not counted at 1 and 2
+  const Result result = this->Read(this->Write("fan.ply", PlyBytes(fan)));
+  ASSERT_EQ(result.Triangles.size(), std::size_t(rim));
+  for (const atp::SoupTriangle& t : result.Triangles)
+  {
+    EXPECT_EQ(int(t.InputUses[0]), 255) << "300 triangles at the center";
+    EXPECT_EQ(int(t.InputUses[1]), 2);
+    EXPECT_EQ(int(t.InputUses[2]), 2);
+  }
 }
 
 TEST_F(TriangleSources, ClosedMeshWithAHole)
