@@ -1662,7 +1662,8 @@ SimplifyResult Simplifier::Run()
   LinkCorners();
   AssignRegions();
   classifyAll();
-  // Counted at both triangles of an edge: edges two triangles run the same way, as a share.
+  // Counted at both triangles of an edge: edges two triangles run the same way, as a share
+  // (SimplifyResult::FacingAtRandom).
   FacingAtRandom = MisorientedEdges > TriangleCount / 2;
   if (MisorientedEdges > 0 && OrientConsistently())
   {

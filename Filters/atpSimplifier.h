@@ -59,10 +59,12 @@ struct SimplifyResult
   std::size_t Collapses = 0;
   /// Pieces removed whole (see Simplify).
   std::size_t PiecesRemoved = 0;
-  /// The mesh's triangles face either way at random: more than a tenth as many of its edges as
-  /// it has triangles are run the same way by both of their triangles (counted at each). It
-  /// simplified with them turned one way, but normals summed over such faces are noise, and
-  /// the input's winding, kept in the output, shades speckled.
+  /// The mesh's triangles face either way at random: its edges run the same way by both of their
+  /// triangles, counted at each of the two, outnumber half its triangles (facing at random gives
+  /// about 1.5 per triangle; a seam between sheets that each face one way, a few percent, and up
+  /// to a tenth in a small diamond along it). It simplified with them turned one way, but
+  /// normals summed over such faces are noise, and the input's winding, kept in the output,
+  /// shades speckled.
   bool FacingAtRandom = false;
   /// Triangles above the quotas, summed over the regions that end over theirs, plus those
   /// above the total quota: locked or topologically constrained geometry can keep some.
