@@ -191,6 +191,22 @@ void ExpectEveryLevelCrackFree(const atp::ModelFile& model)
   }
 }
 
+/// Builds sheets meeting along a spine (small leaves and patches, so that many patches share
+/// it): `boundaryEdges` input boundary edges, and no crack at any level.
+void ExpectSheetsBuildCrackFree(vtkPoints* points, vtkCellArray* sheets, const std::string& name,
+  std::uint64_t boundaryEdges)
+{
+  vtkNew<vtkPolyData> mesh;
+  mesh->SetPoints(points);
+  mesh->SetPolys(sheets);
+  const std::string path = TempPath(name);
+  ASSERT_EQ(BuildModel(mesh, path, 2, 300, 150), 1);
+  const atp::ModelFile model = atp::ModelFile::Open(path);
+  EXPECT_EQ(model.Header().InputBoundaryEdges, boundaryEdges);
+  ExpectEveryLevelCrackFree(model);
+  std::remove(path.c_str());
+}
+
 class Construction : public ::testing::Test
 {
 protected:
@@ -692,15 +708,7 @@ TEST_F(Construction, EdgesOfThreeSheetsStayPut)
       }
     }
   }
-  vtkNew<vtkPolyData> mesh;
-  mesh->SetPoints(points);
-  mesh->SetPolys(sheets);
-  const std::string path = TempPath("sheets.atp");
-  ASSERT_EQ(BuildModel(mesh, path, 2, 300, 150), 1);
-  const atp::ModelFile model = atp::ModelFile::Open(path);
-  EXPECT_EQ(model.Header().InputBoundaryEdges, 3u * 3 * n) << "each sheet's three free sides";
-  ExpectEveryLevelCrackFree(model);
-  std::remove(path.c_str());
+  ExpectSheetsBuildCrackFree(points, sheets, "sheets.atp", 3u * 3 * n); // each sheet's three free sides
 }
 
 // Two closed surfaces through one circle, crossing there like an X: a spindle (two cones) inside
@@ -765,15 +773,7 @@ TEST_F(Construction, EdgesOfFourSheetsStayPut)
   revolve({ { 0, 1 } });                                // the spindle's upper cone
   revolve({ { 0, -1 } });                               // and its lower one
   revolve({ { 1.5, 0.5 }, { 2, 0 }, { 1.5, -0.5 }, { 1, 0 } }); // the torus
-  vtkNew<vtkPolyData> mesh;
-  mesh->SetPoints(points);
-  mesh->SetPolys(sheets);
-  const std::string path = TempPath("four-sheets.atp");
-  ASSERT_EQ(BuildModel(mesh, path, 2, 300, 150), 1);
-  const atp::ModelFile model = atp::ModelFile::Open(path);
-  EXPECT_EQ(model.Header().InputBoundaryEdges, 0u);
-  ExpectEveryLevelCrackFree(model);
-  std::remove(path.c_str());
+  ExpectSheetsBuildCrackFree(points, sheets, "four-sheets.atp", 0);
 }
 
 TEST_F(Construction, SaturatedBoundsAreEqualOverDiamondsAndMonotone)
