@@ -174,9 +174,9 @@ int Build(int argc, char** argv, atp::MpiJobRunner* workers)
   builder->SetJobRunner(workers);
 
   // Errors and warnings are reported once, by us, not also by VTK's output window.
-  vtkNew<vtkCallbackCommand> swallowErrors;
-  builder->AddObserver(vtkCommand::ErrorEvent, swallowErrors);
-  builder->AddObserver(vtkCommand::WarningEvent, swallowErrors);
+  vtkNew<vtkCallbackCommand> reportedHere;
+  builder->AddObserver(vtkCommand::ErrorEvent, reportedHere);
+  builder->AddObserver(vtkCommand::WarningEvent, reportedHere);
   atp::ProgressReport progress("building", 0, "triangles");
   vtkNew<vtkCallbackCommand> onProgress;
   onProgress->SetClientData(&progress);

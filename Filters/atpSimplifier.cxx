@@ -1452,7 +1452,7 @@ void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
     const std::uint32_t c = Fan[i];
     const std::uint32_t t = TriangleOf(c);
     const bool gone = MovedRegions[i] < 0;
-    for (int k = 0; k < 2; ++k)
+    for (int k = 0; k < 2 && TracksUses; ++k)
     {
       // Without a branch: which triangle it is follows no pattern.
       const std::uint32_t* tri = Faces[t].V;
