@@ -332,11 +332,13 @@ private:
     out.resize(live);
   }
   void FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, std::uint32_t w);
-  /// For a triangle t = (u, v, w) that u -> v removes: the triangle across w-u (around u, not
-  /// holding v), which takes the edge v-w over, and the one across v-w (around v, not holding
-  /// u); None where there is none. Fan must hold u's fan.
-  void TrianglesAcross(std::uint32_t t, std::uint32_t u, std::uint32_t v, std::uint32_t w,
-    std::uint32_t& acrossWU, std::uint32_t& acrossVW) const;
+  /// For a triangle t = (u, v, w) that u -> v removes, before u's corners move: the triangle
+  /// across w-u (around u, not holding v), which takes the edge v-w over; None where there is
+  /// none. Fan must hold u's fan.
+  std::uint32_t TriangleAcrossWU(std::uint32_t t, std::uint32_t v, std::uint32_t w) const;
+  /// The same for the triangle across v-w (around v, not holding u), before v's fan takes in
+  /// u's corners.
+  std::uint32_t TriangleAcrossVW(std::uint32_t t, std::uint32_t u, std::uint32_t v, std::uint32_t w) const;
   /// The input triangles t stands for at v and at w go to the triangle that takes its edge
   /// v-w over (PatchMesh::CornerUses), once u has moved onto v.
   void HandOverUses(std::uint32_t t, std::uint32_t v, std::uint32_t w, std::uint32_t heir);
@@ -1348,8 +1350,8 @@ void Simplifier::FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, 
   {
     return; // the usual interior case: nothing to carry
   }
-  std::uint32_t acrossWU = None, acrossVW = None;
-  TrianglesAcross(t, u, v, w, acrossWU, acrossVW);
+  const std::uint32_t acrossWU = TriangleAcrossWU(t, v, w);
+  const std::uint32_t acrossVW = TriangleAcrossVW(t, u, v, w);
   if (acrossWU != None && acrossVW == None && openVW)
   {
     Faces[acrossWU].Bits |= std::uint8_t(1u << EdgeBit(acrossWU, u, w));
@@ -1368,25 +1370,31 @@ void Simplifier::FixOpenEdge(std::uint32_t t, std::uint32_t u, std::uint32_t v, 
   }
 }
 
-void Simplifier::TrianglesAcross(std::uint32_t t, std::uint32_t u, std::uint32_t v,
-  std::uint32_t w, std::uint32_t& acrossWU, std::uint32_t& acrossVW) const
+std::uint32_t Simplifier::TriangleAcrossWU(std::uint32_t t, std::uint32_t v, std::uint32_t w) const
 {
-  acrossWU = None;
-  acrossVW = None;
+  std::uint32_t across = None;
   for (std::uint32_t c : Fan)
   {
     const std::uint32_t s = TriangleOf(c);
     if (s != t && !Contains(s, v) && Contains(s, w))
     {
-      acrossWU = s;
+      across = s;
     }
   }
+  return across;
+}
+
+std::uint32_t Simplifier::TriangleAcrossVW(
+  std::uint32_t t, std::uint32_t u, std::uint32_t v, std::uint32_t w) const
+{
+  std::uint32_t across = None;
   ForEachCorner(v, [&](std::uint32_t s, int) {
     if (s != t && !Contains(s, u) && Contains(s, w))
     {
-      acrossVW = s;
+      across = s;
     }
   });
+  return across;
 }
 
 void Simplifier::HandOverUses(std::uint32_t t, std::uint32_t v, std::uint32_t w, std::uint32_t heir)
@@ -1470,8 +1478,7 @@ void Simplifier::Collapse(std::uint32_t u, std::uint32_t v)
   {
     if (heir[k] == None) // w-u is open: the triangle across v-w takes it
     {
-      std::uint32_t acrossWU;
-      TrianglesAcross(removed[k], u, v, third[k], acrossWU, heir[k]);
+      heir[k] = TriangleAcrossVW(removed[k], u, v, third[k]);
     }
     if (heir[k] != None)
     {
