@@ -9,6 +9,7 @@
 #include <vtkDataArray.h>
 #include <vtkFloatArray.h>
 #include <vtkNew.h>
+#include <vtkOutputWindow.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -1454,6 +1455,32 @@ TEST_F(TriangleSources, VtpErrors)
                       "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"0.1\">\n"
                       "<ImageData WholeExtent=\"0 1 0 1 0 1\"/></VTKFile>\n"),
     "not a readable VTK XML PolyData file");
+}
+
+/// Counts what VTK would print, while installed as its output window.
+class CountingOutputWindow : public vtkOutputWindow
+{
+public:
+  static CountingOutputWindow* New() { return new CountingOutputWindow; }
+  void DisplayText(const char*) override { ++this->Texts; }
+  int Texts = 0;
+};
+
+TEST_F(TriangleSources, VtpPointsOfTwoComponentsAreRefusedBeforeVtkReadsThem)
+{
+  const std::string path = this->Write("flat.vtp",
+    "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\">\n<PolyData>"
+    "<Piece NumberOfPoints=\"3\" NumberOfPolys=\"1\"><Points>"
+    "<DataArray type=\"Float32\" NumberOfComponents=\"2\" format=\"ascii\">0 0 1 0 0 1</DataArray>"
+    "</Points><Polys><DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0 1 2</DataArray>"
+    "<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">3</DataArray></Polys>"
+    "</Piece></PolyData></VTKFile>\n");
+  vtkSmartPointer<vtkOutputWindow> previous = vtkOutputWindow::GetInstance();
+  vtkNew<CountingOutputWindow> counting;
+  vtkOutputWindow::SetInstance(counting);
+  this->ExpectError(path, "points with 2 components (a point has 3)");
+  vtkOutputWindow::SetInstance(previous);
+  EXPECT_EQ(counting->Texts, 0) << "VTK printed its own error too";
 }
 
 TEST_F(TriangleSources, BinaryPlyTruncatedAnywhereIsAnInputError)
