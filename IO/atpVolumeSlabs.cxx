@@ -4,6 +4,7 @@
 #include "atpNiftiHeader.h"
 #include "atpTriangleSource.h" // InputError
 #include "atpVtkErrors.h"
+#include "atpVtkXmlCheck.h"
 
 #include <vtkAlgorithm.h>
 #include <vtkExecutive.h>
@@ -178,7 +179,9 @@ VolumeSlabReader VolumeSlabReader::Open(const std::string& path, const RawVolume
   {
     auto reader = vtkSmartPointer<vtkXMLImageDataReader>::New();
     reader->SetFileName(path.c_str());
-    return VolumeSlabReader(reader, path);
+    VolumeSlabReader volume(reader, path);
+    CheckVtkXmlFile(reader, file);
+    return volume;
   }
   file.Fail("not a volume file (expected .nii, .nii.gz or .vti, or a raw file with its "
             "dimensions and voxel type)");

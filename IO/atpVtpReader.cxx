@@ -2,48 +2,16 @@
 
 #include "atpInputFile.h"
 #include "atpVtkErrors.h"
+#include "atpVtkXmlCheck.h"
 
 #include <vtkExecutive.h>
 #include <vtkNew.h>
-#include <vtkXMLDataElement.h>
-#include <vtkXMLDataParser.h>
 #include <vtkXMLPolyDataReader.h>
 
-#include <string>
+#include <new>
 
 namespace atp
 {
-namespace
-{
-/// The NumberOfComponents of the first piece's points other than 3 (read from the file's XML
-/// structure, before the data), or 3. VTK would report a mismatch from inside vtkPoints, to its
-/// output window, where no observer of the reader sees it.
-int PointComponents(vtkXMLPolyDataReader* reader)
-{
-  vtkXMLDataParser* parser = reader->GetXMLParser();
-  vtkXMLDataElement* root = parser ? parser->GetRootElement() : nullptr;
-  vtkXMLDataElement* polyData = root ? root->FindNestedElementWithName("PolyData") : nullptr;
-  for (int i = 0; polyData && i < polyData->GetNumberOfNestedElements(); ++i)
-  {
-    vtkXMLDataElement* piece = polyData->GetNestedElement(i);
-    vtkXMLDataElement* points = std::string(piece->GetName()) == "Piece"
-      ? piece->FindNestedElementWithName("Points")
-      : nullptr;
-    vtkXMLDataElement* array = points ? points->FindNestedElementWithName("DataArray") : nullptr;
-    int components = 1; // VTK's default for an array that does not say
-    if (array)
-    {
-      array->GetScalarAttribute("NumberOfComponents", components);
-      if (components != 3)
-      {
-        return components;
-      }
-    }
-  }
-  return 3;
-}
-} // namespace
-
 vtkSmartPointer<vtkPolyData> ReadVtpFile(const std::string& path)
 {
   const InputFile file(path); // missing or unreadable files get our message, not VTK's
@@ -57,12 +25,18 @@ vtkSmartPointer<vtkPolyData> ReadVtpFile(const std::string& path)
   reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
   reader->SetFileName(path.c_str());
   reader->UpdateInformation();
-  const int components = errors->FirstError.empty() ? PointComponents(reader) : 3;
-  if (components != 3)
+  if (errors->FirstError.empty())
   {
-    file.Fail("points with " + std::to_string(components) + " components (a point has 3)");
+    CheckVtkXmlFile(reader, file);
   }
-  reader->Update();
+  try
+  {
+    reader->Update();
+  }
+  catch (const std::bad_alloc&)
+  {
+    file.Fail("not enough memory to read it");
+  }
   if (!errors->FirstError.empty() || reader->GetErrorCode() != 0)
   {
     file.Fail("not a readable VTK XML PolyData file" +

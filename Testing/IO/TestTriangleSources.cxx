@@ -17,6 +17,7 @@
 #include <vtkType.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkXMLPolyDataWriter.h>
+#include <vtkXMLWriter.h>
 
 #include "FileTestFixture.h"
 #include "ProcessMemory.h"
@@ -30,6 +31,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -867,17 +869,13 @@ TEST_F(TriangleSources, VtpPolygonsAndStrips)
   EXPECT_EQ(result.Stats.TrianglesEmitted, 6u);
 }
 
-/// `mesh` as a .vtp at `path`, with `colors` (its own name set) added to the point data, as the
-/// active scalars or beside a float array that is.
-void WriteVtp(const Mesh& mesh, vtkDataArray* colors, bool colorsAreScalars, const std::string& path)
+/// `mesh` as points and triangles.
+vtkSmartPointer<vtkPolyData> PolyDataOf(const Mesh& mesh)
 {
   vtkNew<vtkPoints> points;
-  vtkNew<vtkFloatArray> other;
-  other->SetName("temperature");
   for (const auto& p : mesh.Points)
   {
     points->InsertNextPoint(p.data());
-    other->InsertNextValue(1);
   }
   vtkNew<vtkCellArray> polys;
   for (const auto& face : mesh.Faces)
@@ -885,9 +883,21 @@ void WriteVtp(const Mesh& mesh, vtkDataArray* colors, bool colorsAreScalars, con
     const vtkIdType ids[3] = { face[0], face[1], face[2] };
     polys->InsertNextCell(3, ids);
   }
-  vtkNew<vtkPolyData> polyData;
+  auto polyData = vtkSmartPointer<vtkPolyData>::New();
   polyData->SetPoints(points);
   polyData->SetPolys(polys);
+  return polyData;
+}
+
+/// `mesh` as a .vtp at `path`, with `colors` (its own name set) added to the point data, as the
+/// active scalars or beside a float array that is.
+void WriteVtp(const Mesh& mesh, vtkDataArray* colors, bool colorsAreScalars, const std::string& path)
+{
+  vtkSmartPointer<vtkPolyData> polyData = PolyDataOf(mesh);
+  vtkNew<vtkFloatArray> other;
+  other->SetName("temperature");
+  other->SetNumberOfValues(polyData->GetNumberOfPoints());
+  other->Fill(1);
   if (colorsAreScalars)
   {
     polyData->GetPointData()->SetScalars(colors);
@@ -1455,6 +1465,78 @@ TEST_F(TriangleSources, VtpErrors)
                       "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"0.1\">\n"
                       "<ImageData WholeExtent=\"0 1 0 1 0 1\"/></VTKFile>\n"),
     "not a readable VTK XML PolyData file");
+}
+
+TEST_F(TriangleSources, VtpInEveryEncodingAndCompressionReads)
+{
+  // Small blocks: many of them, so that compressed headers of every length are read.
+  const Mesh mesh = Grid(7, 5, false);
+  for (const int compressor : { vtkXMLWriter::NONE, vtkXMLWriter::ZLIB, vtkXMLWriter::LZ4, vtkXMLWriter::LZMA })
+  {
+    for (const int mode : { 0, 1, 2, 3 }) // ASCII, inline binary, appended base64, appended raw
+    {
+      for (const bool wide : { false, true })
+      {
+        SCOPED_TRACE("compressor " + std::to_string(compressor) + ", mode " + std::to_string(mode) +
+          (wide ? ", 64-bit headers" : ", 32-bit headers"));
+        vtkNew<vtkXMLPolyDataWriter> writer; // one reused across modes wrote raw bytes inline
+        writer->SetInputData(PolyDataOf(mesh));
+        writer->SetBlockSize(40);
+        writer->SetCompressorType(compressor);
+        writer->SetDataMode(mode == 0 ? vtkXMLWriter::Ascii : mode == 1 ? vtkXMLWriter::Binary : vtkXMLWriter::Appended);
+        writer->SetEncodeAppendedData(mode != 3); // inline binary is base64 only when this is on
+        writer->SetHeaderType(wide ? vtkXMLWriter::UInt64 : vtkXMLWriter::UInt32);
+        writer->SetFileName(this->Path("written.vtp").c_str());
+        ASSERT_EQ(writer->Write(), 1);
+        EXPECT_EQ(this->Read(this->Path("written.vtp")).Triangles.size(), mesh.Faces.size());
+      }
+    }
+  }
+}
+
+TEST_F(TriangleSources, VtpHeadersClaimingMoreThanTheFileHoldsAreRefusedBeforeVtkAllocates)
+{
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->SetInputData(PolyDataOf(Grid(7, 5, false)));
+  writer->SetCompressorTypeToZLib();
+  writer->SetDataModeToAppended();
+  writer->SetEncodeAppendedData(false);
+  writer->SetHeaderTypeToUInt64();
+  writer->SetFileName(this->Path("good.vtp").c_str());
+  ASSERT_EQ(writer->Write(), 1);
+  std::ifstream in(this->Path("good.vtp"), std::ios::binary);
+  const std::string good((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // The first array's header: block count, block size, last block's size (little-endian words).
+  const std::size_t header = good.find('_', good.find("<AppendedData")) + 1;
+  ASSERT_NE(header, std::string::npos + 1);
+  const auto withWord = [&](std::size_t word, std::uint64_t value) {
+    std::string bytes = good;
+    std::memcpy(&bytes[header + 8 * word], &value, 8);
+    return bytes;
+  };
+  const long before = atp::testing::StatusKiB("VmRSS");
+  // VTK 9.1 allocates a size for every block the header claims: 2 GiB for these 2^28.
+  this->ExpectError(this->Write("blocks.vtp", withWord(0, std::uint64_t(1) << 28)),
+    "its compressed array 'Points' claims 268435456 blocks, more than the file holds");
+  std::string huge = withWord(1, std::uint64_t(1) << 40);
+  std::memcpy(&huge[header + 16], &huge[header + 8], 8);
+  this->ExpectError(this->Write("block.vtp", huge), "claims a block of 1099511627776 bytes stored in");
+  EXPECT_LT(atp::testing::StatusKiB("VmHWM") - before, 200 * 1024) << "KiB more at the peak";
+
+  std::string points = good;
+  const std::size_t count = points.find("NumberOfPoints=\"");
+  ASSERT_NE(count, std::string::npos);
+  points.insert(count + 16, "99999999");
+  this->ExpectError(this->Write("points.vtp", points), "more than its");
+  this->ExpectError(this->Write("text.vtp",
+                      "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\">\n<PolyData>"
+                      "<Piece NumberOfPoints=\"3\" NumberOfPolys=\"1\"><PointData>"
+                      "<DataArray type=\"String\" Name=\"label\" format=\"ascii\">97 0 98 0 99 0</DataArray>"
+                      "</PointData><Points><DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">"
+                      "0 0 0 1 0 0 0 1 0</DataArray></Points><Polys><DataArray type=\"Int32\" "
+                      "Name=\"connectivity\" format=\"ascii\">0 1 2</DataArray><DataArray type=\"Int32\" "
+                      "Name=\"offsets\" format=\"ascii\">3</DataArray></Polys></Piece></PolyData></VTKFile>\n"),
+    "its array 'label' has type 'String'");
 }
 
 /// Counts what VTK would print, while installed as its output window.
