@@ -4,6 +4,7 @@
 #include <chrono>
 #include <iterator>
 #include <cstring>
+#include <new>
 #include <stdexcept>
 
 namespace atp
@@ -56,8 +57,16 @@ BucketStore::BucketStore(const std::string& scratchDirectory, std::size_t memory
   // At least a handful of frames so that a split (one bucket read, two appended) always fits.
   const std::size_t frameBytes = PageBytes + CornerTableSlots * sizeof(std::uint16_t);
   const std::size_t frames = std::max<std::size_t>(8, memoryBudgetBytes / frameBytes);
-  Pool = HugePageBuffer(frames * PageBytes);
-  CornerTableMemory = HugePageBuffer(frames * CornerTableSlots * sizeof(std::uint16_t));
+  try
+  {
+    Pool = HugePageBuffer(frames * PageBytes);
+    CornerTableMemory = HugePageBuffer(frames * CornerTableSlots * sizeof(std::uint16_t));
+  }
+  catch (const std::bad_alloc&)
+  {
+    throw std::runtime_error("cannot reserve " + std::to_string((frames * frameBytes) >> 20) +
+      " MiB for the triangle buckets (the bucket memory asked for): out of memory");
+  }
   CornersIndexed.assign(frames, 0);
   States.assign(frames, FrameState::Free);
   FramePage.assign(frames, -1);

@@ -19,6 +19,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <new>
 #include <stdexcept>
 
 vtkStandardNewMacro(vtkATPBuilder);
@@ -199,6 +200,11 @@ int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, v
         "vtkPolyDataNormals with ConsistencyOn)";
       vtkWarningMacro(<< this->WarningMessage);
     }
+  }
+  catch (const std::bad_alloc&)
+  {
+    this->ErrorMessage = "out of memory (an allocation failed)";
+    vtkErrorMacro(<< this->ErrorMessage);
   }
   catch (const std::exception& e)
   {

@@ -135,6 +135,21 @@ TEST(BucketStore, WithoutColorsTrianglesReadBackWhite)
   CheckEvictionAndReuse(false);
 }
 
+TEST(BucketStore, AMemoryBudgetBeyondTheMachineIsRefusedWithAMessage)
+{
+  try
+  {
+    BucketStore store("", std::size_t(1) << 52, false); // 4 PiB: no mapping of that size
+    ADD_FAILURE() << "no error";
+  }
+  catch (const std::runtime_error& error)
+  {
+    EXPECT_NE(std::string(error.what()).find("MiB for the triangle buckets (the bucket memory asked for): out of memory"),
+      std::string::npos)
+      << error.what();
+  }
+}
+
 namespace
 {
 bool SameTriangles(const std::vector<SoupTriangle>& a, const std::vector<SoupTriangle>& b)
