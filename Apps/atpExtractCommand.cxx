@@ -19,6 +19,8 @@
 #include "vtkXMLWriter.h"
 
 #include <cerrno>
+#include <cstdint>
+#include <filesystem>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -192,7 +194,14 @@ int ExtractCommand(const std::vector<std::string>& arguments)
   const int written = xml ? xml->Write() : vtkWriter::SafeDownCast(writer)->Write();
   const vtkIdType triangles = extract->GetOutput()->GetNumberOfPolys();
   const unsigned long code = writer->GetErrorCode();
-  if (code == vtkErrorCode::OutOfDiskSpaceError)
+  // VTK's writers report a full disk as such (STL), with a stale errno (the XML writer, which
+  // deletes what it wrote and says "No such file or directory"), or not at all (PLY): a write
+  // that failed where less space is free than the triangles' indices alone take was short of it.
+  struct statvfs disk{};
+  const std::string directory = std::filesystem::path(partial).parent_path().string();
+  const bool full = ::statvfs(directory.empty() ? "." : directory.c_str(), &disk) == 0 &&
+    std::uint64_t(disk.f_bavail) * disk.f_frsize < 12 * std::uint64_t(triangles);
+  if (code == vtkErrorCode::OutOfDiskSpaceError || (code != vtkErrorCode::NoError && full))
   {
     throw pending.Failure(std::strerror(ENOSPC));
   }
@@ -206,9 +215,6 @@ int ExtractCommand(const std::vector<std::string>& arguments)
   }
   if (triangles > 0 && TrianglesIn(out, partial) != static_cast<long long>(triangles))
   {
-    // VTK's PLY writer reports no error: a full disk shows as a short file.
-    struct statvfs disk{};
-    const bool full = ::statvfs(partial.c_str(), &disk) == 0 && disk.f_bavail == 0;
     throw pending.Failure(std::string(full ? std::strerror(ENOSPC) + std::string(": ") : "") +
       "the file read back is incomplete");
   }
