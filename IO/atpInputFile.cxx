@@ -95,6 +95,28 @@ std::unique_ptr<MappedRegion> InputFile::Map(std::uint64_t offset, std::size_t n
     mapping, length, static_cast<const unsigned char*>(mapping) + (offset - start));
 }
 
+std::string Quoted(std::string_view text)
+{
+  constexpr std::size_t Longest = 40;
+  std::string quoted = "'";
+  for (std::size_t i = 0; i < text.size() && i < Longest; ++i)
+  {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7f)
+    {
+      quoted += char(c);
+    }
+    else
+    {
+      static const char digits[] = "0123456789abcdef";
+      quoted += "\\x";
+      quoted += digits[c >> 4];
+      quoted += digits[c & 15];
+    }
+  }
+  return quoted + (text.size() > Longest ? "...'" : "'");
+}
+
 void InputFile::Fail(const std::string& problem) const
 {
   throw InputError(this->Name + ": " + problem);

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 
 namespace atp
 {
@@ -28,6 +29,11 @@ private:
   std::size_t MappedBytes;
   const unsigned char* First;
 };
+
+/// Text from an input file, quoted for a message: bytes that are not printable ASCII (a NUL
+/// would end the message where it is printed) as \xNN, and only the first 40 characters of a
+/// longer token.
+std::string Quoted(std::string_view text);
 
 class InputFile
 {

@@ -117,7 +117,7 @@ void ObjMesh::ReadVertices()
       {
         this->File.FailAtLine(this->Reader.Line(),
           word.empty() ? "a vertex needs three coordinates"
-                       : "expected a coordinate, found '" + std::string(word) + "'");
+                       : "expected a coordinate, found " + Quoted(word));
       }
       x = ToFloatCoordinate(value);
     }
@@ -154,7 +154,7 @@ std::uint32_t ObjMesh::Resolve(std::string_view corner) const
   const std::size_t length = ParseIntegerPrefix(corner, index);
   if (length == 0 || (length < corner.size() && corner[length] != '/'))
   {
-    this->File.FailAtLine(this->Reader.Line(), "bad face corner '" + std::string(corner) + "'");
+    this->File.FailAtLine(this->Reader.Line(), "bad face corner " + Quoted(corner));
   }
   // Positive indices count from 1 over the whole file, negative ones back from this line.
   const std::int64_t resolved =

@@ -61,7 +61,7 @@ PlyHeader ReadPlyHeader(const InputFile& file)
     PlyType t;
     if (!ParseType(name, t))
     {
-      file.Fail("unsupported PLY property type '" + std::string(name) + "' (line " +
+      file.Fail("unsupported PLY property type " + Quoted(name) + " (line " +
         std::to_string(line) + ")");
     }
     return t;
@@ -127,7 +127,7 @@ PlyHeader ReadPlyHeader(const InputFile& file)
       }
       else
       {
-        fail(line, "unknown format '" + std::string(words[1]) + "'");
+        fail(line, "unknown format " + Quoted(words[1]));
       }
       formatSeen = true;
     }
@@ -176,7 +176,7 @@ PlyHeader ReadPlyHeader(const InputFile& file)
     }
     else
     {
-      fail(line, "unexpected '" + std::string(words[0]) + "'");
+      fail(line, "unexpected " + Quoted(words[0]));
     }
   }
 }

@@ -213,7 +213,7 @@ public:
     }
     if (!ParseInteger(token, value))
     {
-      this->Fail("expected an integer, found '" + std::string(token) + "'");
+      this->Fail("expected an integer, found " + Quoted(token));
     }
     return true;
   }
@@ -227,7 +227,7 @@ public:
     }
     if (!ParseReal(token, value))
     {
-      this->Fail("expected a number, found '" + std::string(token) + "'");
+      this->Fail("expected a number, found " + Quoted(token));
     }
     return true;
   }

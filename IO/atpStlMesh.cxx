@@ -207,7 +207,7 @@ std::unique_ptr<PolygonMesh> ReadAscii(const InputFile& file, const std::string&
         if (!ParseReal(token, value))
         {
           file.FailAtLine(
-            reader.Line(), "expected a coordinate, found '" + std::string(token) + "'");
+            reader.Line(), "expected a coordinate, found " + Quoted(token));
         }
         x = ToFloatCoordinate(value);
       }

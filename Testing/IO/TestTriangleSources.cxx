@@ -1414,6 +1414,11 @@ TEST_F(TriangleSources, ObjErrors)
     this->Write("short.obj", "v 0 0\n"), "line 1: a vertex needs three coordinates");
   this->ExpectError(
     this->Write("word.obj", "v 0 zero 0\n"), "line 1: expected a coordinate, found 'zero'");
+  // Bytes no message can print are escaped: a NUL used to end the message where it stood.
+  this->ExpectError(this->Write("nul.obj", std::string("v 0 0 0\0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", 30)),
+    "line 1: expected a coordinate, found '0\\x00'");
+  this->ExpectError(this->Write("long.obj", "v 0 " + std::string(100, 'y') + " 0\n"),
+    "found '" + std::string(40, 'y') + "...'");
   this->ExpectError(
     this->Write("nan.obj", square + "v 0 nan 0\nf 1 2 3\n"), "line 4: non-finite coordinate (nan)");
   this->ExpectError(this->Write("long.obj", "v 0 0 0\n# " + std::string(5 << 20, 'x') + "\n"),
