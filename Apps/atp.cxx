@@ -20,6 +20,8 @@
 #include "vtkCommand.h"
 #include "vtkNew.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -316,6 +318,16 @@ int Generate(int argc, char** argv)
   if (!cl.Has("output"))
   {
     throw atp::UsageError("missing -o OUT.ply (see atp generate --help)");
+  }
+  const std::string& output = cl.Get("output");
+  const std::size_t dot = output.find_last_of('.');
+  std::string extension = dot == std::string::npos ? "" : output.substr(dot);
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension != ".ply" || output.find('/', dot) != std::string::npos)
+  {
+    // PLY under another name would be read as what the name says.
+    throw atp::UsageError("-o " + output + ": the surface is written as PLY, to a name ending in .ply");
   }
   atp::SurfaceOptions options;
   options.Triangles = std::uint64_t(cl.GetInteger("triangles", 8, 4000000000LL));

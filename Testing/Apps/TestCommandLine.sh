@@ -179,6 +179,9 @@ rm -f "$work"/*.ply "$work"/*.vtp "$work"/*.stl "$work/l6.atp"
 expect 0 "wrote .*g.ply: [0-9]+ triangles" -- "$atp" generate -n 5000 --holes 2 -o "$work/g.ply"
 expect 0 "boundary edges" -- "$atp" build "$work/g.ply" -o "$work/g.atp" --quiet
 expect 1 "g.ply: cannot write the mesh: No such file" -- "$atp" generate -n 5000 -o "$work/no/such/dir/g.ply"
+# PLY under another name would be read as what the name says.
+expect 2 "g.obj: the surface is written as PLY, to a name ending in .ply" -- "$atp" generate -n 5000 -o "$work/g.obj"
+[ ! -e "$work/g.obj" ] || fail "generate wrote g.obj"
 # Interrupted (SIGTERM, SIGHUP, SIGQUIT, a closed pipe; sent by timeout, since a background job
 # of a script ignores SIGINT and SIGQUIT): the partial file goes too.
 mkdir "$work/interrupted"
