@@ -18,6 +18,7 @@
 #include "vtkXMLPolyDataWriter.h"
 #include "vtkXMLWriter.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdint>
 #include <filesystem>
@@ -117,6 +118,12 @@ int ExtractCommand(const std::vector<std::string>& arguments)
   if (cl.Has("camera"))
   {
     const std::vector<double> eyeAndFocus = cl.GetNumbers("camera", 6);
+    // The camera's own arithmetic squares distances: far beyond any model, they overflow.
+    constexpr double Farthest = 1e30;
+    if (std::any_of(eyeAndFocus.begin(), eyeAndFocus.end(), [](double x) { return std::abs(x) > Farthest; }))
+    {
+      throw UsageError("--camera: coordinates must lie within +-1e30");
+    }
     for (int a = 0; a < 3; ++a)
     {
       direction[a] = eyeAndFocus[std::size_t(a) + 3] - eyeAndFocus[std::size_t(a)];
