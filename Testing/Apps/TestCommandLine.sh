@@ -162,7 +162,7 @@ expect 2 "camera must be 6 comma-separated numbers" -- "$atp" extract "$work/x.a
 expect 2 "the eye and the focal point are the same point" -- "$atp" extract "$work/x.atp" --camera 1,2,3,1,2,3 -o "$work/c.ply"
 expect 2 "--up must be a direction that is not along the view direction" -- "$atp" extract "$work/x.atp" --up 0,0,0 -o "$work/c.ply"
 expect 2 "--up must be a direction that is not along the view direction" -- "$atp" extract "$work/x.atp" --up 0,0,1 -o "$work/c.ply"
-expect 2 "--camera: coordinates must lie within +-1e30" -- "$atp" extract "$work/x.atp" --camera 1e160,0,0,0,0,0 -o "$work/c.ply"
+expect 2 "--camera: coordinates must lie within [+]-1e30" -- "$atp" extract "$work/x.atp" --camera 1e160,0,0,0,0,0 -o "$work/c.ply"
 expect 2 "--up must be a direction that is not along the view direction" -- "$atp" extract "$work/x.atp" --camera 0,0,30,0,0,0 --up 0,0,-2 -o "$work/c.ply"
 expect 2 "tolerance must be a number" -- "$atp" extract "$work/x.atp" --tolerance 0 -o "$work/c.ply"
 expect 1 "not an ATP model" -- "$atp" extract "$data/bumpy-torus.ply" -o "$work/c.ply"
