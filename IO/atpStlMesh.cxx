@@ -8,6 +8,7 @@
 #include "atpTextParsing.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstring>
 #include <numeric>
 #include <stdexcept>
@@ -120,13 +121,21 @@ void AddCorner(const InputFile& file, CornerWelder& welder, const float p[3])
   }
 }
 
-/// ASCII STL starts with "solid" and is text; a binary header may start with "solid" too, but
+/// An ASCII STL keyword, in any case: the format's are lowercase, but some writers use capitals.
+bool IsKeyword(std::string_view token, std::string_view keyword)
+{
+  return token.size() == keyword.size() &&
+    std::equal(token.begin(), token.end(), keyword.begin(),
+      [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
+}
+
+/// ASCII STL starts with "solid" (in any case) and is text; a binary header may start with "solid" too, but
 /// its count and float records soon contain bytes that text never does.
 bool LooksLikeAscii(const InputFile& file)
 {
   char head[512];
   const std::size_t n = file.ReadAt(0, head, sizeof(head));
-  if (n < 5 || std::memcmp(head, "solid", 5) != 0)
+  if (n < 5 || !IsKeyword(std::string_view(head, 5), "solid"))
   {
     return false;
   }
@@ -177,11 +186,11 @@ std::unique_ptr<PolygonMesh> ReadAscii(const InputFile& file, const std::string&
   bool inLoop = false;
   while (reader.NextToken(token))
   {
-    if (token == "solid" || token == "endsolid")
+    if (IsKeyword(token, "solid") || IsKeyword(token, "endsolid"))
     {
       reader.NextLine(token); // the rest of the line is a name
     }
-    else if (token == "outer")
+    else if (IsKeyword(token, "outer"))
     {
       if (inLoop)
       {
@@ -190,7 +199,7 @@ std::unique_ptr<PolygonMesh> ReadAscii(const InputFile& file, const std::string&
       corners = 0;
       inLoop = true;
     }
-    else if (token == "vertex")
+    else if (IsKeyword(token, "vertex"))
     {
       if (!inLoop)
       {
@@ -218,7 +227,7 @@ std::unique_ptr<PolygonMesh> ReadAscii(const InputFile& file, const std::string&
       AddCorner(file, welder, p);
       ++corners;
     }
-    else if (token == "endloop")
+    else if (IsKeyword(token, "endloop"))
     {
       if (!inLoop)
       {

@@ -26,6 +26,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -797,6 +798,17 @@ TEST_F(TriangleSources, AsciiStl)
   EXPECT_EQ(Soup(result), ExpectedSoup(mesh));
   EXPECT_EQ(result.Stats.BoundaryEdges, 8u);
   EXPECT_EQ(result.Stats.VerticesRead, 9u);
+}
+
+TEST_F(TriangleSources, AsciiStlInCapitals)
+{
+  // Some writers capitalize the keywords; it was taken for a corrupt binary STL.
+  const Mesh mesh = Grid(2, 2, false);
+  std::string bytes = AsciiStlBytes(mesh);
+  std::transform(bytes.begin(), bytes.end(), bytes.begin(),
+    [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+  const Result result = this->Read(this->Write("capitals.stl", bytes));
+  EXPECT_EQ(Soup(result), ExpectedSoup(mesh));
 }
 
 TEST_F(TriangleSources, AsciiStlFacetsOfOtherSizesAreFanned)
