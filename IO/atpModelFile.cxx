@@ -379,6 +379,7 @@ void ModelFile::ValidateNodes()
   unsigned rootsSeen = 0;
   int previousLevel = 0;
   std::uint64_t triangles = 0;
+  std::uint64_t leafTriangles = 0; // the full-resolution mesh, all of it
   for (std::size_t i = 0; i < Count; ++i)
   {
     const ModelNode& n = NodeArray[i];
@@ -483,6 +484,7 @@ void ModelFile::ValidateNodes()
       bad(Cat(n.VertexCount, " vertices for ", n.TriangleCount, " triangles"));
     }
     triangles += n.TriangleCount;
+    leafTriangles += n.Children[0] == -1 ? n.TriangleCount : 0;
 
     if (!AllFinite(n.Sphere, 4) || !AllFinite(n.ConeAxis, 3) || !std::isfinite(n.ConeCos) ||
       !std::isfinite(n.Error) || !std::isfinite(n.SaturatedError) ||
@@ -493,6 +495,10 @@ void ModelFile::ValidateNodes()
     if (n.Sphere[3] < 0 || n.SaturatedSphere[3] < 0)
     {
       bad("negative sphere radius");
+    }
+    if (n.TriangleCount == 0 && std::any_of(n.Sphere, n.Sphere + 4, [](float x) { return x != 0; }))
+    {
+      bad("an empty patch with a sphere that is not all zeros");
     }
     if (n.ConeCos < -1 || n.ConeCos > 1)
     {
@@ -514,6 +520,10 @@ void ModelFile::ValidateNodes()
   if (triangles != h.StoredTriangles)
   {
     Throw(Cat("header says ", h.StoredTriangles, " stored triangles, the nodes hold ", triangles));
+  }
+  if (leafTriangles != h.InputTriangles)
+  {
+    Throw(Cat("header says ", h.InputTriangles, " input triangles, the leaves hold ", leafTriangles));
   }
   if (h.Depth != std::uint32_t(previousLevel))
   {

@@ -155,6 +155,10 @@ Model Synthetic(const std::vector<int>& splits = { 2, 6 })
     m.Nodes[i].TriangleCount = std::uint32_t(bytes / 7);
     m.Nodes[i].VertexCount = m.Nodes[i].TriangleCount / 2 + (bytes > 6 ? 3 : 0);
     triangles += m.Nodes[i].TriangleCount;
+    if (m.Nodes[i].TriangleCount == 0)
+    {
+      std::fill(std::begin(m.Nodes[i].Sphere), std::end(m.Nodes[i].Sphere), 0.0f); // the empty sphere
+    }
   }
 
   ModelHeader& h = m.Header;
@@ -168,7 +172,10 @@ Model Synthetic(const std::vector<int>& splits = { 2, 6 })
   }
   h.LatticeScale = 1048576.0 / 9.0;
   h.QuantizationStep = 1.0 / 4096;
-  h.InputTriangles = 123456789;
+  for (const ModelNode& n : m.Nodes)
+  {
+    h.InputTriangles += n.Children[0] == -1 ? n.TriangleCount : 0; // what the leaves hold
+  }
   h.InputBoundaryEdges = 321;
   h.StoredTriangles = triangles;
   h.LeafCapacity = 4000;
@@ -474,6 +481,10 @@ TEST(ModelFile, EveryValidationRuleHasItsOwnError)
       "node 8: saturated error 100 above its parent's 4" },
     { "stored triangles", Seal::All, [](H& h, N&, R&) { h.StoredTriangles += 1; },
       "stored triangles, the nodes hold" },
+    { "input triangles", Seal::All, [](H& h, N&, R&) { h.InputTriangles += 1; },
+      "input triangles, the leaves hold" },
+    { "empty patch with a sphere", Seal::All, [](H&, N& n, R&) { n[3].Sphere[0] = 0.5f; },
+      "node 3: an empty patch with a sphere that is not all zeros" },
     { "depth", Seal::All, [](H& h, N&, R&) { h.Depth = 3; },
       "header says depth 3, the deepest node is at level 2" },
     { "unknown flag", Seal::All, [](H& h, N&, R&) { h.Flags |= 4; }, "unknown flags 0x4" },
