@@ -332,6 +332,11 @@ void ModelFile::ValidateHeader()
     {
       Throw("the quantization grid reaches beyond the range of floats");
     }
+    // The builder's grid holds the box, its points' floats rounded to the step at most.
+    if (h.QuantizationOrigin[a] > h.BoxMin[a] + h.QuantizationStep || last < h.BoxMax[a] - h.QuantizationStep)
+    {
+      Throw("the quantization grid does not cover the bounding box");
+    }
   }
   if (!std::isfinite(h.ErrorScale) || !(h.ErrorScale >= 0))
   {

@@ -481,6 +481,8 @@ TEST(ModelFile, EveryValidationRuleHasItsOwnError)
       "node 8: saturated error 100 above its parent's 4" },
     { "stored triangles", Seal::All, [](H& h, N&, R&) { h.StoredTriangles += 1; },
       "stored triangles, the nodes hold" },
+    { "grid beside the box", Seal::All, [](H& h, N&, R&) { h.QuantizationOrigin[2] = 1e20; },
+      "the quantization grid does not cover the bounding box" },
     { "input triangles", Seal::All, [](H& h, N&, R&) { h.InputTriangles += 1; },
       "input triangles, the leaves hold" },
     { "empty patch with a sphere", Seal::All, [](H&, N& n, R&) { n[3].Sphere[0] = 0.5f; },
