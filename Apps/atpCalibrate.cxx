@@ -25,13 +25,17 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <stdexcept>
+
+#include <unistd.h>
 
 namespace atp
 {
@@ -282,6 +286,12 @@ int CalibrateCommand(const std::vector<std::string>& arguments)
   const double checkScale = check ? cl.GetNumber("check", 0, 1e9) : 0;
 
   const ModelFile model = ModelFile::Open(path);
+  // The scale found is stored in the model: one that cannot be written is said before the search.
+  if (!cl.Has("dry-run") && ::access(path.c_str(), W_OK) != 0)
+  {
+    throw std::runtime_error(path + ": cannot store the scale in it: " + std::strerror(errno) +
+      " (--dry-run searches without storing)");
+  }
   const ModelHeader& h = model.Header();
   const float previousScale = h.ErrorScale;
   double center[3];

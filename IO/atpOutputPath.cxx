@@ -50,6 +50,11 @@ std::string OutputPathProblem(const std::string& path, const std::vector<std::st
     // Found now, not when the finished output is renamed into place.
     return std::string(std::strerror(folderError)) + " (its directory " + directory + ")";
   }
+  // Read-only (EROFS even for root) or not ours to write in: found now, not after the work.
+  if (::access(directory.c_str(), W_OK | X_OK) != 0)
+  {
+    return std::string("cannot write in its directory ") + directory + ": " + std::strerror(errno);
+  }
   const std::size_t nameBytes = path.size() - (slash == std::string::npos ? 0 : slash + 1);
   const long limit = ::pathconf(directory.c_str(), _PC_NAME_MAX);
   if (limit > 0 && nameBytes + SideFileSuffixBytes > std::size_t(limit))

@@ -21,6 +21,26 @@ cp "$work/x.atp" "$work/original.atp"
 expect 0 "dry run: .* left unchanged" -- "$atp" calibrate "$work/x.atp" "${small[@]}" --dry-run
 cmp -s "$work/x.atp" "$work/original.atp" || { echo "FAIL: --dry-run changed the model"; failures=$((failures + 1)); }
 
+# A model the scale cannot be stored in is said before the search, not after it: a file not
+# ours to write, or for root (who writes any file) one on a read-only mount.
+cp "$work/original.atp" "$work/readonly.atp"
+chmod 444 "$work/readonly.atp"
+readonly_calibrate=("$atp" calibrate "$work/readonly.atp" "${small[@]}")
+if [ "$(id -u)" -eq 0 ]; then
+  if unshare -m true 2>/dev/null; then
+    readonly_calibrate=(unshare -m bash -c 'f=$1; shift; mount --bind "$f" "$f" && mount -o remount,ro,bind "$f" && exec "$@"' \
+      -- "$work/readonly.atp" "${readonly_calibrate[@]}")
+  else
+    readonly_calibrate=()
+    echo "root without mount namespaces: no read-only model to calibrate"
+  fi
+fi
+if [ ${#readonly_calibrate[@]} -gt 0 ]; then
+  expect 1 "^atp calibrate: error: .*readonly.atp: cannot store the scale in it: (Read-only file system|Permission denied)" -- \
+    "${readonly_calibrate[@]}"
+  [ "$(wc -l <<<"$out")" -eq 1 ] || fail "calibrate searched before saying the model cannot be written"
+fi
+
 expect 0 "stored error scale [0-9.e+-]+ in" -- "$atp" calibrate "$work/x.atp" "${small[@]}"
 echo "$out"
 scale=$(sed -nE 's/^stored error scale ([0-9.e+-]+) in .*/\1/p' <<<"$out")

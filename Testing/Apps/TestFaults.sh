@@ -52,6 +52,13 @@ if [ -n "${ATP_FAULTS_NAMESPACE:-}" ]; then
   done
   [ -z "$(ls -A "$work/full")" ] || fail "left on the full disk by extract: $(ls -A "$work/full")"
   umount "$work/full"
+
+  # A read-only place is refused before the build, not when its model is renamed into place.
+  mount -t tmpfs -o ro,size=64k tmpfs "$work/full"
+  expect 1 "^atp build: error: .*model.atp: cannot write in its directory .*: Read-only file system" -- \
+    "$atp" build "$input" -o "$work/full/model.atp" --quiet
+  [ "$(wc -l <<<"$out")" -eq 1 ] || fail "build ran before refusing a read-only place: $out"
+  umount "$work/full"
 else
   echo "not root or no mount namespaces: a file size limit stands in for the full disk"
   cp "$work/previous.atp" "$work/out/model.atp"
