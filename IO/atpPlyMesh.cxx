@@ -7,6 +7,8 @@
 #include "atpTextParsing.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <cmath>
 #include <cstring>
 #include <optional>
 #include <vector>
@@ -204,7 +206,7 @@ public:
   {
   }
 
-  bool Integer(PlyType, std::int64_t& value)
+  bool Integer(PlyType type, std::int64_t& value)
   {
     std::string_view token;
     if (!this->Reader.NextToken(token))
@@ -215,10 +217,11 @@ public:
     {
       this->Fail("expected an integer, found " + Quoted(token));
     }
+    this->CheckRange(type, double(value), token);
     return true;
   }
 
-  bool Real(PlyType, double& value)
+  bool Real(PlyType type, double& value)
   {
     std::string_view token;
     if (!this->Reader.NextToken(token))
@@ -229,6 +232,7 @@ public:
     {
       this->Fail("expected a number, found " + Quoted(token));
     }
+    this->CheckRange(type, value, token);
     return true;
   }
 
@@ -263,6 +267,28 @@ public:
   }
 
 private:
+  /// A value of an integer property must be one its type holds: text can say anything.
+  void CheckRange(PlyType type, double value, std::string_view token) const
+  {
+    double lo = 0, hi = 0;
+    switch (type)
+    {
+      case PlyType::Int8: lo = INT8_MIN, hi = INT8_MAX; break;
+      case PlyType::UInt8: hi = UINT8_MAX; break;
+      case PlyType::Int16: lo = INT16_MIN, hi = INT16_MAX; break;
+      case PlyType::UInt16: hi = UINT16_MAX; break;
+      case PlyType::Int32: lo = INT32_MIN, hi = INT32_MAX; break;
+      case PlyType::UInt32: hi = UINT32_MAX; break;
+      case PlyType::Float32:
+      case PlyType::Float64: return;
+    }
+    if (!(value >= lo && value <= hi && value == std::floor(value)))
+    {
+      static const char* const names[] = { "char", "uchar", "short", "ushort", "int", "uint" };
+      this->Fail(Quoted(token) + " is not a value of its property's type, " + names[int(type)]);
+    }
+  }
+
   BufferedReader& Reader;
 };
 

@@ -1343,6 +1343,16 @@ TEST_F(TriangleSources, PlyDataErrors)
       "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
       "property float z\nend_header\n0 zero 0\n"),
     "line 8: expected a number, found 'zero'");
+  // Text can say what no binary file could: a value outside its property's type.
+  const std::string small = "ply\nformat ascii 1.0\nelement vertex 3\nproperty uchar x\nproperty uchar y\n"
+                            "property uchar z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  this->ExpectError(this->Write("uchar.ply", small + "300 0 0\n0 1 0\n0 0 1\n3 0 1 2\n"),
+    "line 10: '300' is not a value of its property's type, uchar");
+  this->ExpectError(this->Write("minus.ply", small + "0 0 0\n0 1 0\n0 -5 1\n3 0 1 2\n"),
+    "line 12: '-5' is not a value of its property's type, uchar");
+  this->ExpectError(this->Write("half.ply", small + "0 0 0\n0 1.5 0\n0 0 1\n3 0 1 2\n"),
+    "line 11: '1.5' is not a value of its property's type, uchar");
+  EXPECT_EQ(this->Read(this->Write("fits.ply", small + "255 0 0\n0 1 0\n0 0 1\n3 0 1 2\n")).Triangles.size(), 1u);
   this->ExpectError(
     this->Write("count.ply",
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
