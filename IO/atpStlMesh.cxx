@@ -190,11 +190,34 @@ std::unique_ptr<PolygonMesh> ReadAscii(const InputFile& file, const std::string&
     {
       reader.NextLine(token); // the rest of the line is a name
     }
+    else if (IsKeyword(token, "facet"))
+    {
+      // "facet normal nx ny nz": the normal is not used (the builder sums its own).
+      if (!reader.NextToken(token) || !IsKeyword(token, "normal"))
+      {
+        file.FailAtLine(reader.Line(), "expected 'normal' after 'facet'");
+      }
+      for (int k = 0; k < 3; ++k)
+      {
+        double value;
+        if (!reader.NextToken(token) || !ParseReal(token, value))
+        {
+          file.FailAtLine(reader.Line(), "a facet normal needs three numbers");
+        }
+      }
+    }
+    else if (IsKeyword(token, "endfacet"))
+    {
+    }
     else if (IsKeyword(token, "outer"))
     {
       if (inLoop)
       {
         file.FailAtLine(reader.Line(), "'outer loop' inside a loop (no 'endloop' before it)");
+      }
+      if (!reader.NextToken(token) || !IsKeyword(token, "loop"))
+      {
+        file.FailAtLine(reader.Line(), "expected 'loop' after 'outer'");
       }
       corners = 0;
       inLoop = true;
@@ -249,6 +272,10 @@ std::unique_ptr<PolygonMesh> ReadAscii(const InputFile& file, const std::string&
       }
       ++facets;
       inLoop = false;
+    }
+    else
+    {
+      file.FailAtLine(reader.Line(), "unexpected " + Quoted(token));
     }
   }
   if (inLoop)

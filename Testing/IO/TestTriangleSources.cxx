@@ -1468,6 +1468,14 @@ TEST_F(TriangleSources, StlErrors)
   this->ExpectError(
     this->Write("open.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"),
     "truncated: the file ends inside a facet");
+  // Every token has its place: a fourth coordinate or a word out of place is said, not skipped.
+  const std::string facet = "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n";
+  this->ExpectError(this->Write("four.stl", facet + "vertex 0 1 0 9\nendloop\nendfacet\nendsolid x\n"),
+    "four.stl line 6: unexpected '9'");
+  this->ExpectError(this->Write("normal.stl", "solid x\nfacet normal 0 0\nouter loop\n"),
+    "normal.stl line 3: a facet normal needs three numbers");
+  this->ExpectError(this->Write("outer.stl", "solid x\nfacet normal 0 0 1\nouter lop\n"),
+    "outer.stl line 3: expected 'loop' after 'outer'");
   this->ExpectError(
     this->Write("cutvertex.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0"),
     "truncated: the file ends inside a vertex");
