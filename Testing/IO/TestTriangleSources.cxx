@@ -19,6 +19,7 @@
 #include <vtkXMLPolyDataWriter.h>
 #include <vtkXMLWriter.h>
 
+#include "CompressedXmlFile.h"
 #include "FileTestFixture.h"
 #include "ProcessMemory.h"
 
@@ -1533,17 +1534,10 @@ TEST_F(TriangleSources, VtpHeadersClaimingMoreThanTheFileHoldsAreRefusedBeforeVt
 {
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputData(PolyDataOf(Grid(7, 5, false)));
-  writer->SetCompressorTypeToZLib();
-  writer->SetDataModeToAppended();
-  writer->SetEncodeAppendedData(false);
-  writer->SetHeaderTypeToUInt64();
-  writer->SetFileName(this->Path("good.vtp").c_str());
-  ASSERT_EQ(writer->Write(), 1);
-  std::ifstream in(this->Path("good.vtp"), std::ios::binary);
-  const std::string good((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  // The first array's header: block count, block size, last block's size (little-endian words).
-  const std::size_t header = good.find('_', good.find("<AppendedData")) + 1;
-  ASSERT_NE(header, std::string::npos + 1);
+  const atp::testing::CompressedXmlFile written = atp::testing::WriteCompressed(writer, this->Path("good.vtp"), true);
+  ASSERT_NE(written.Header, std::string::npos);
+  const std::string& good = written.Bytes;
+  const std::size_t header = written.Header;
   const auto withWord = [&](std::size_t word, std::uint64_t value) {
     std::string bytes = good;
     std::memcpy(&bytes[header + 8 * word], &value, 8);

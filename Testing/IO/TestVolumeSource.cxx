@@ -23,6 +23,7 @@
 #include <vtkTrivialProducer.h>
 #include <vtkXMLImageDataWriter.h>
 
+#include "CompressedXmlFile.h"
 #include "FileTestFixture.h"
 
 #include <gtest/gtest.h>
@@ -638,17 +639,11 @@ TEST_F(VolumeSource, VtiStructureIsCheckedBeforeVtkReadsTheData)
   image->AllocateScalars(VTK_UNSIGNED_CHAR, 1);
   vtkNew<vtkXMLImageDataWriter> writer;
   writer->SetInputData(image);
-  writer->SetCompressorTypeToZLib();
-  writer->SetDataModeToAppended();
-  writer->SetEncodeAppendedData(false);
-  writer->SetHeaderTypeToUInt32();
-  writer->SetFileName(this->Path("good.vti").c_str());
-  ASSERT_EQ(writer->Write(), 1);
-  std::ifstream in(this->Path("good.vti"), std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::size_t header = bytes.find('_', bytes.find("<AppendedData")) + 1;
+  atp::testing::CompressedXmlFile written = atp::testing::WriteCompressed(writer, this->Path("good.vti"), false);
+  ASSERT_NE(written.Header, std::string::npos);
+  std::string& bytes = written.Bytes;
   const std::uint32_t blocks = 1u << 28;
-  std::memcpy(&bytes[header], &blocks, 4);
+  std::memcpy(&bytes[written.Header], &blocks, 4);
   this->ExpectError(this->Write("blocks.vti", bytes), "claims 268435456 blocks, more than the file holds");
 }
 
