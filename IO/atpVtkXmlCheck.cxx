@@ -227,7 +227,8 @@ private:
     static const char* const numeric[] = { "Int8", "UInt8", "Int16", "UInt16", "Int32", "UInt32",
       "Int64", "UInt64", "Float32", "Float64" };
     const char* type = array->GetAttribute("type");
-    if (std::none_of(std::begin(numeric), std::end(numeric), [&](const char* t) { return Is(type, t); }))
+    if (std::none_of(std::begin(numeric), std::end(numeric), [&](const char* t) { return Is(type, t); }) &&
+      this->MustBeNumeric(array, parent))
     {
       this->Fail("its " + this->NameOf(array, parent) + " has type '" + (type ? type : "") +
         "' (expected one of Int8 to UInt64, Float32, Float64)");
@@ -246,6 +247,26 @@ private:
     {
       this->CheckCompressedHeader(array, parent, Is(format, "appended"));
     }
+  }
+
+  /// Points and cells are numbers; so is an array of point or cell data that its parent names as
+  /// an attribute (Scalars="name", ...): VTK 9.1 crashes setting a string array as the active
+  /// scalars. Other arrays of strings or bits ride along unread.
+  bool MustBeNumeric(vtkXMLDataElement* array, vtkXMLDataElement* parent) const
+  {
+    if (!Is(parent->GetName(), "PointData") && !Is(parent->GetName(), "CellData"))
+    {
+      return true;
+    }
+    const char* name = array->GetAttribute("Name");
+    for (const char* attribute : { "Scalars", "Vectors", "Normals", "Tensors", "TCoords", "GlobalIds", "PedigreeIds", "EdgeFlag", "Tangents", "RationalWeights", "HigherOrderDegrees" })
+    {
+      if (name && Is(parent->GetAttribute(attribute), name))
+      {
+        return true;
+      }
+    }
+    return false;
   }
 
   /// Reads `bytes` of the array's binary data from its start (decoding base64), or fewer when

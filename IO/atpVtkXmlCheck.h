@@ -14,8 +14,8 @@ namespace atp
 class InputFile;
 
 /// Call after reader->UpdateInformation() on `file`, before the data is read. Throws InputError
-/// naming the file and the problem when: an array of a piece (points, cells, point or cell data)
-/// is not of a numeric type; the points do not have 3 components; an image's origin, spacing or
+/// naming the file and the problem when: an array of points or cells, or one of point or cell
+/// data named as an attribute (the scalars, ...), is not of a numeric type; the points do not have 3 components; an image's origin, spacing or
 /// direction is not finite; a compressed array's header claims more blocks or bytes than the file
 /// holds, or blocks that decompress beyond what the compressor can reach; or a piece declares more
 /// points or cells than the file could hold. A file VTK cannot parse is left to VTK's own error.
