@@ -20,8 +20,6 @@
 #include "vtkCommand.h"
 #include "vtkNew.h"
 
-#include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -155,6 +153,11 @@ int Build(int argc, char** argv, atp::MpiJobRunner* workers)
   if (!cl.Has("output"))
   {
     throw atp::UsageError("missing -o OUT.atp (see atp build --help)");
+  }
+  if (atp::FileExtension(cl.Get("output")) != ".atp")
+  {
+    // A model under a mesh's name would replace the mesh, and be read as one.
+    throw atp::UsageError("-o " + cl.Get("output") + ": a model is written to a name ending in .atp");
   }
 
   vtkNew<vtkATPBuilder> builder;
@@ -320,11 +323,7 @@ int Generate(int argc, char** argv)
     throw atp::UsageError("missing -o OUT.ply (see atp generate --help)");
   }
   const std::string& output = cl.Get("output");
-  const std::size_t dot = output.find_last_of('.');
-  std::string extension = dot == std::string::npos ? "" : output.substr(dot);
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (extension != ".ply" || output.find('/', dot) != std::string::npos)
+  if (atp::FileExtension(output) != ".ply")
   {
     // PLY under another name would be read as what the name says.
     throw atp::UsageError("-o " + output + ": the surface is written as PLY, to a name ending in .ply");

@@ -1,6 +1,7 @@
 // atp-view: the desktop viewer of ATP models (also run as `atp view`).
 #include "atpCommandLine.h"
 #include "atpModelBuild.h"
+#include "atpOutputPath.h"
 #include "atpVolumeSlabs.h"
 #include "atpPropertiesPanel.h"
 #include "atpViewerWindow.h"
@@ -15,6 +16,9 @@
 #include <QTimer>
 
 #include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
 #include <cstdlib>
 
 namespace
@@ -68,6 +72,43 @@ atp::CommandLine Options()
   return cl;
 }
 
+/// Every file the session writes is checked before it starts, not when it ends: its name says
+/// what it holds, and none may replace an input or another of them (a screenshot over the
+/// model, a recording over the path it plays).
+void CheckOutputs(const atp::CommandLine& cl)
+{
+  std::vector<std::string> taken;
+  for (const char* input : { "", "play" })
+  {
+    if (*input ? cl.Has(input) : cl.PositionalCount() > 0)
+    {
+      taken.push_back(*input ? cl.Get(input) : cl.Positional(0));
+    }
+  }
+  const std::pair<const char*, const char*> outputs[] = { { "output", ".atp" }, { "screenshot", ".png" },
+    { "record", ".camera" } };
+  for (const auto& [option, extension] : outputs)
+  {
+    if (!cl.Has(option))
+    {
+      continue;
+    }
+    const std::string& path = cl.Get(option);
+    const std::string name = std::string("--") + option + " " + path + ": ";
+    if (atp::FileExtension(path) != extension)
+    {
+      throw atp::UsageError(name + "a name ending in " + extension);
+    }
+    // Their names end differently, so outputs never meet; an input exists, so it is known.
+    const std::string problem = atp::OutputPathProblem(path, taken);
+    if (!problem.empty())
+    {
+      throw atp::UsageError(name + problem);
+    }
+    taken.push_back(path);
+  }
+}
+
 }
 
 int main(int argc, char** argv)
@@ -100,6 +141,7 @@ int main(int argc, char** argv)
     {
       throw atp::UsageError("--screenshot needs a MODEL");
     }
+    CheckOutputs(cl);
   }
   catch (const atp::UsageError& e)
   {

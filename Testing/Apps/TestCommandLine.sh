@@ -82,7 +82,7 @@ expect 1 "fifo.atp: exists and is not a regular file: refusing to replace it" --
 rm -f "$work/fifo.ply" "$work/fifo.atp"
 # Nor may a build replace its own input, or start with a name its side file cannot extend.
 cp "$data/bumpy-torus.ply" "$work/self.ply"
-expect 1 "self.ply: is the input .*self.ply: refusing to replace it" -- "$atp" build "$work/self.ply" -o "$work/self.ply"
+expect 2 "-o .*self.ply: a model is written to a name ending in .atp" -- "$atp" build "$work/self.ply" -o "$work/self.ply"
 cmp -s "$data/bumpy-torus.ply" "$work/self.ply" || fail "a build replaced its own input"
 rm -f "$work/self.ply"
 expect 1 "file name too long" -- "$atp" build "$data/bumpy-torus.ply" -o "$work/$(printf 'a%.0s' $(seq 240)).atp"

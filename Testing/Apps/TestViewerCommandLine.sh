@@ -27,6 +27,19 @@ expect 2 "screenshot needs a MODEL" -- env -u DISPLAY "$atp" view --screenshot x
 expect 2 "tolerance must be a number" -- env -u DISPLAY "$atp" view a.atp --tolerance fine
 
 "$atp" build "$data/bumpy-torus.ply" -o "$work/torus.atp" --quiet >/dev/null || fail "atp build"
+# What a session writes is checked before it starts: a screenshot or a recording never replaces
+# the model or the path played, and names say what the files hold.
+cp "$work/torus.atp" "$work/kept.atp"
+expect 2 "screenshot .*kept.atp: a name ending in .png" -- env -u DISPLAY "$atp" view "$work/kept.atp" --screenshot "$work/kept.atp"
+expect 2 "record .*kept.atp: a name ending in .camera" -- env -u DISPLAY "$atp" view "$work/kept.atp" --record "$work/kept.atp"
+expect 2 "output .*bumpy.ply: a name ending in .atp" -- env -u DISPLAY "$atp" view "$data/bumpy-torus.ply" -o "$work/bumpy.ply"
+printf '0 0 0 5 0 0 0 0 0 1 30\n' > "$work/path.camera"
+expect 2 "record .*path.camera: is the input .*path.camera: refusing to replace it" -- \
+  env -u DISPLAY "$atp" view "$work/kept.atp" --play "$work/path.camera" --record "$work/path.camera"
+expect 2 "record .*nowhere/r.camera: No such file or directory" -- \
+  env -u DISPLAY "$atp" view "$work/kept.atp" --record "$work/nowhere/r.camera" --screenshot "$work/early.png"
+[ ! -e "$work/early.png" ] || fail "a screenshot was written before a bad recording path was refused"
+cmp -s "$work/torus.atp" "$work/kept.atp" || fail "a session replaced its model"
 expect 0 "" -- "$atp" view "$work/torus.atp" --size 320x240 --tolerance 4 --record "$work/still.camera" \
   --screenshot "$work/still.png"
 is_png "$work/still.png"
