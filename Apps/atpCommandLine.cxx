@@ -26,6 +26,27 @@ std::string FileExtension(const std::string& path)
   return extension;
 }
 
+CameraFault CheckCamera(const double eye[3], const double focalPoint[3], const double up[3])
+{
+  constexpr double Farthest = 1e30;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (!(std::abs(eye[a]) <= Farthest) || !(std::abs(focalPoint[a]) <= Farthest))
+    {
+      return CameraFault::TooFar;
+    }
+  }
+  const double direction[3] = { focalPoint[0] - eye[0], focalPoint[1] - eye[1], focalPoint[2] - eye[2] };
+  if (direction[0] == 0 && direction[1] == 0 && direction[2] == 0)
+  {
+    return CameraFault::NoDirection;
+  }
+  const double across[3] = { up[1] * direction[2] - up[2] * direction[1],
+    up[2] * direction[0] - up[0] * direction[2], up[0] * direction[1] - up[1] * direction[0] };
+  const auto length = [](const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); };
+  return length(across) > 1e-9 * length(up) * length(direction) ? CameraFault::None : CameraFault::UpAlongView;
+}
+
 CommandLine::CommandLine(std::string command, std::string summary)
   : Command(std::move(command))
   , Summary(std::move(summary))

@@ -25,6 +25,16 @@ std::string FormatNumber(double value);
 /// Options naming files are told apart by it, as the builder's readers do.
 std::string FileExtension(const std::string& path);
 
+/// What makes a camera (eye, focal point, view up) unusable, checked where one is given.
+enum class CameraFault
+{
+  None,
+  TooFar,      ///< a coordinate beyond +-1e30: the camera's arithmetic squares distances
+  NoDirection, ///< the eye is the focal point
+  UpAlongView  ///< the view up is zero or along the view direction
+};
+CameraFault CheckCamera(const double eye[3], const double focalPoint[3], const double up[3]);
+
 class CommandLine
 {
 public:

@@ -114,31 +114,18 @@ int ExtractCommand(const std::vector<std::string>& arguments)
   const double viewAngle = cl.GetNumber("view-angle", 1, 179);
   const std::vector<double> up = cl.GetNumbers("up", 3);
   // The default camera looks down -z; a view needs a direction, and an up not along it.
-  double direction[3] = { 0, 0, -1 };
-  if (cl.Has("camera"))
+  const std::vector<double> givenCamera =
+    cl.Has("camera") ? cl.GetNumbers("camera", 6) : std::vector<double>{ 0, 0, 1, 0, 0, 0 };
+  switch (CheckCamera(&givenCamera[0], &givenCamera[3], up.data()))
   {
-    const std::vector<double> eyeAndFocus = cl.GetNumbers("camera", 6);
-    // The camera's own arithmetic squares distances: far beyond any model, they overflow.
-    constexpr double Farthest = 1e30;
-    if (std::any_of(eyeAndFocus.begin(), eyeAndFocus.end(), [](double x) { return std::abs(x) > Farthest; }))
-    {
+    case CameraFault::None:
+      break;
+    case CameraFault::TooFar:
       throw UsageError("--camera: coordinates must lie within +-1e30");
-    }
-    for (int a = 0; a < 3; ++a)
-    {
-      direction[a] = eyeAndFocus[std::size_t(a) + 3] - eyeAndFocus[std::size_t(a)];
-    }
-    if (direction[0] == 0 && direction[1] == 0 && direction[2] == 0)
-    {
+    case CameraFault::NoDirection:
       throw UsageError("--camera: the eye and the focal point are the same point");
-    }
-  }
-  const double across[3] = { up[1] * direction[2] - up[2] * direction[1],
-    up[2] * direction[0] - up[0] * direction[2], up[0] * direction[1] - up[1] * direction[0] };
-  const auto length = [](const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); };
-  if (!(length(across) > 1e-9 * length(up.data()) * length(direction)))
-  {
-    throw UsageError("--up must be a direction that is not along the view direction");
+    case CameraFault::UpAlongView:
+      throw UsageError("--up must be a direction that is not along the view direction");
   }
 
   // Written beside OUT and renamed when complete: a failed write leaves no file that looks
@@ -174,7 +161,7 @@ int ExtractCommand(const std::vector<std::string>& arguments)
       center[2] + radius / std::sin(viewAngle * M_PI / 360), center[0], center[1], center[2] };
     if (cl.Has("camera"))
     {
-      eyeAndFocus = cl.GetNumbers("camera", 6);
+      eyeAndFocus = givenCamera;
     }
     camera->SetPosition(eyeAndFocus[0], eyeAndFocus[1], eyeAndFocus[2]);
     camera->SetFocalPoint(eyeAndFocus[3], eyeAndFocus[4], eyeAndFocus[5]);

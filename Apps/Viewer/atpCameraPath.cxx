@@ -1,5 +1,7 @@
 #include "atpCameraPath.h"
 
+#include "atpCommandLine.h"
+
 #include "vtkCamera.h"
 
 #include <cmath>
@@ -146,15 +148,34 @@ CameraPath CameraPath::Load(const std::string& fileName)
     {
       throw fail("the view angle must be between 0 and 180 degrees");
     }
-    if (k.Position == k.FocalPoint)
+    switch (CheckCamera(k.Position.data(), k.FocalPoint.data(), k.ViewUp.data()))
     {
-      throw fail("the position and the focal point are the same point");
+      case CameraFault::None:
+        break;
+      case CameraFault::TooFar:
+        throw fail("coordinates must lie within +-1e30");
+      case CameraFault::NoDirection:
+        throw fail("the position and the focal point are the same point");
+      case CameraFault::UpAlongView:
+        throw fail("the view up must be a direction that is not along the view direction");
     }
     path.Frames.push_back(k);
   }
   if (path.Frames.empty())
   {
     throw std::runtime_error(fileName + ": no keyframes");
+  }
+  // Played from its first keyframe, however late a hand-written path starts; and not for days.
+  const double start = path.Frames.front().Time;
+  for (CameraKeyframe& k : path.Frames)
+  {
+    k.Time -= start;
+  }
+  constexpr double LongestSeconds = 24 * 3600;
+  if (path.Duration() > LongestSeconds)
+  {
+    throw std::runtime_error(fileName + ": the path lasts " + std::to_string(path.Duration()) +
+      " seconds, more than a day");
   }
   return path;
 }

@@ -552,6 +552,13 @@ TEST(CameraPath, SavesAndLoadsExactlyAndInterpolates)
   EXPECT_NEAR(camera->GetViewAngle(), 35, 1e-12);
   loaded.Apply(99, camera);
   EXPECT_EQ(camera->GetPosition()[0], 1.0 / 3);
+
+  // A hand-written path that starts late plays from its first keyframe (it waited for it).
+  std::ofstream(file) << "1000000000 0 0 7 0 0 0 0 1 0 30\n1000000001 0 0 9 0 0 0 0 1 0 30\n";
+  const atp::CameraPath late = atp::CameraPath::Load(file);
+  ::unlink(file.c_str());
+  EXPECT_EQ(late.Keyframes().front().Time, 0);
+  EXPECT_EQ(late.Duration(), 1);
 }
 
 TEST(CameraPath, NamesTheLineOfAMistake)
@@ -562,9 +569,13 @@ TEST(CameraPath, NamesTheLineOfAMistake)
     "0 0 0 1 0 0 0 0 1 0 30\n1 0 0 1 0 0 0 0 1 0 30 7\n", // a twelfth number
     "\n# comment\n0 0 0 1 0 0 0 0 1 0 nan\n",             // not finite
     "0 0 0 1 0 0 1 0 1 0 30\n",                           // eye at the focal point
+    "0 0 0 1 0 0 0 0 1 0 30\n1 0 0 1 0 0 0 0 0 2 30\n",    // view up along the view
+    "0 1e300 0 1 0 0 0 0 1 0 30\n",                        // beyond what a camera squares
+    "0 0 0 1 0 0 0 0 1 0 30\n100000 0 0 2 0 0 0 0 1 0 30\n", // longer than a day
     "# nothing\n",
   };
-  const char* const where[] = { ":2:", ":2:", ":3:", ":1:", "no keyframes" };
+  const char* const where[] = { ":2:", ":2:", ":3:", ":1:", ":2: the view up", ":1: coordinates", "more than a day",
+    "no keyframes" };
   for (std::size_t i = 0; i < std::size(bad); ++i)
   {
     std::ofstream(file) << bad[i];
