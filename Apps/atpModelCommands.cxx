@@ -37,6 +37,48 @@ std::map<int, LevelFigures> Levels(const ModelFile& model)
   }
   return levels;
 }
+/// `text` as a JSON string: quoted, with quotes, backslashes and control characters escaped,
+/// and any byte that is not part of valid UTF-8 (file names are bytes) as U+FFFD.
+std::string JsonString(const std::string& text)
+{
+  std::string json = "\"";
+  for (std::size_t i = 0; i < text.size();)
+  {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c < 0x80)
+    {
+      char escaped[8];
+      if (c == '"' || c == '\\')
+      {
+        json += '\\';
+        json += char(c);
+      }
+      else if (c < 0x20)
+      {
+        std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
+        json += escaped;
+      }
+      else
+      {
+        json += char(c);
+      }
+      ++i;
+      continue;
+    }
+    // A UTF-8 sequence: its length from the lead byte, continuation bytes 10xxxxxx, no overlong
+    // two-byte form.
+    const std::size_t length = c >= 0xC2 && c <= 0xDF ? 2 : c >= 0xE0 && c <= 0xEF ? 3 : c >= 0xF0 && c <= 0xF4 ? 4 : 0;
+    bool valid = length > 0 && i + length <= text.size();
+    for (std::size_t k = 1; valid && k < length; ++k)
+    {
+      valid = (static_cast<unsigned char>(text[i + k]) & 0xC0) == 0x80;
+    }
+    json += valid ? text.substr(i, length) : "\\ufffd";
+    i += valid ? length : 1;
+  }
+  return json + "\"";
+}
+
 } // namespace
 
 int InfoCommand(const std::vector<std::string>& arguments)
@@ -56,14 +98,14 @@ int InfoCommand(const std::vector<std::string>& arguments)
   const char* cacheOrder = (h.Flags & ModelFlagFastCacheOrder) ? "fast" : "best";
   if (cl.Has("json"))
   {
-    std::printf("{\"file\": \"%s\", \"version\": %u, \"bytes\": %llu, \"nodes\": %llu, "
+    std::printf("{\"file\": %s, \"version\": %u, \"bytes\": %llu, \"nodes\": %llu, "
                 "\"levels\": %u, \"input_triangles\": %llu, \"input_boundary_edges\": %llu, "
                 "\"colors\": %s, \"stored_triangles\": %llu, \"bytes_per_input_triangle\": %.3f, "
                 "\"leaf_capacity\": %u, \"patch_budget\": %u, \"cache_order\": \"%s\", "
                 "\"error_scale\": %g, "
                 "\"box_min\": [%.9g, %.9g, %.9g], \"box_max\": [%.9g, %.9g, %.9g], "
                 "\"quantization_step\": %.9g, \"per_level\": [",
-      cl.Positional(0).c_str(), h.Version, static_cast<unsigned long long>(h.FileBytes),
+      JsonString(cl.Positional(0)).c_str(), h.Version, static_cast<unsigned long long>(h.FileBytes),
       static_cast<unsigned long long>(h.NodeCount), h.Depth + 1,
       static_cast<unsigned long long>(h.InputTriangles),
       static_cast<unsigned long long>(h.InputBoundaryEdges), colors ? "true" : "false",

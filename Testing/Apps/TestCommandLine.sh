@@ -32,6 +32,11 @@ expect 0 "simplify: [0-9]+ diamonds" -- "$atp" build "$data/bumpy-torus.ply" -o 
 expect 0 "model: [0-9]+ nodes, [0-9]+ levels" -- "$atp" info "$work/x.atp"
 expect 0 '"bytes_per_input_triangle"' -- "$atp" info --json "$work/x.atp"
 expect 0 '"cache_order": "best"' -- "$atp" info --json "$work/x.atp"
+# A file name is bytes: quotes, backslashes, control characters and what is not UTF-8 are escaped.
+odd="$work/$(printf 'q"b\\c\001\377.atp')"
+cp "$work/x.atp" "$odd"
+expect 0 '^\{"file": ".*/q\\"b\\\\c\\u0001\\ufffd\.atp", "version"' -- "$atp" info --json "$odd"
+rm -f "$odd"
 expect 0 "done: " -- "$atp" build "$data/bumpy-torus.ply" -o "$work/fast.atp" --quiet --fast-cache-order
 
 # Triangles wound at random build, with a warning after the figures; wound one way, none.
