@@ -376,6 +376,20 @@ int BenchCommand(const std::vector<std::string>& arguments)
         cl.Get(option) + "'");
     }
   }
+  // Each output is a file of its own: two under one name would write over each other.
+  std::vector<std::filesystem::path> outputs;
+  for (const char* option : { "csv", "plot", "image" })
+  {
+    if (cl.Has(option) && cl.Get(option) != "-")
+    {
+      const std::filesystem::path path = std::filesystem::absolute(cl.Get(option)).lexically_normal();
+      if (std::find(outputs.begin(), outputs.end(), path) != outputs.end())
+      {
+        throw UsageError(std::string("--") + option + " " + cl.Get(option) + ": another output is written there too");
+      }
+      outputs.push_back(path);
+    }
+  }
   const std::string fullPath = cl.Get("compare-full");
   vtkSmartPointer<vtkAlgorithm> fullReader;
   if (cl.Has("compare-full") && !(fullReader = MeshReaderFor(fullPath)))

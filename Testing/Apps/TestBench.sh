@@ -71,6 +71,8 @@ expect 2 "unknown option --bogus" -- "$atp" bench "$work/t.atp" --bogus
 expect 2 "option --plot needs a value" -- "$atp" bench "$work/t.atp" --plot
 expect 2 "--plot must name a .png file" -- "$atp" bench "$work/t.atp" --plot "$work/p.jpg"
 expect 2 "--image must name a .png file" -- "$atp" bench "$work/t.atp" --image "$work/i"
+expect 2 "--image .*same.png: another output is written there too" -- "$atp" bench "$work/t.atp" --plot "$work/same.png" --image "$work/./same.png"
+[ ! -e "$work/same.png" ] || fail "bench wrote an output before refusing two under one name"
 expect 2 "--compare-full must name a .ply, .obj, .stl or .vtp" -- "$atp" bench "$work/t.atp" --compare-full "$work/m.dae"
 mkdir "$work/no"
 expect 1 "p.png: cannot write the plot: No such file" -- "$atp" bench "$work/t.atp" "${small[@]}" --plot "$work/no/dir/p.png"
