@@ -22,7 +22,9 @@ enum class LineKind
 /// What a line declares; `rest` is left holding what follows the keyword.
 LineKind Classify(std::string_view line, std::string_view& rest)
 {
-  rest = line;
+  // A comment that ends a line is no content either.
+  line = WithoutByteOrderMark(line);
+  rest = line.substr(0, line.find('#'));
   const std::string_view keyword = NextWord(rest);
   return keyword == "v" ? LineKind::Vertex : (keyword == "f" ? LineKind::Face : LineKind::Other);
 }
@@ -189,6 +191,11 @@ bool ObjMesh::NextBatch(PolygonBatch& batch)
       {
         this->Indices.push_back(this->Resolve(word));
         ++corners;
+      }
+      if (corners < 3)
+      {
+        this->File.FailAtLine(this->Reader.Line(),
+          "a face needs 3 corners or more, this one has " + std::to_string(corners));
       }
       this->Sizes.push_back(corners);
     }

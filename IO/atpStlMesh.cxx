@@ -133,13 +133,14 @@ bool IsKeyword(std::string_view token, std::string_view keyword)
 /// its count and float records soon contain bytes that text never does.
 bool LooksLikeAscii(const InputFile& file)
 {
-  char head[512];
-  const std::size_t n = file.ReadAt(0, head, sizeof(head));
-  if (n < 5 || !IsKeyword(std::string_view(head, 5), "solid"))
+  char buffer[512];
+  const std::string_view head =
+    WithoutByteOrderMark(std::string_view(buffer, file.ReadAt(0, buffer, sizeof(buffer))));
+  if (head.size() < 5 || !IsKeyword(head.substr(0, 5), "solid"))
   {
     return false;
   }
-  return std::none_of(head, head + n,
+  return std::none_of(head.begin(), head.end(),
     [](char c)
     {
       const unsigned char u = static_cast<unsigned char>(c);
@@ -184,8 +185,9 @@ std::unique_ptr<PolygonMesh> ReadAscii(const InputFile& file, const std::string&
   std::string_view token;
   std::uint32_t corners = 0; // of the facet being read
   bool inLoop = false;
-  while (reader.NextToken(token))
+  for (bool first = true; reader.NextToken(token); first = false)
   {
+    token = first ? WithoutByteOrderMark(token) : token;
     if (IsKeyword(token, "solid") || IsKeyword(token, "endsolid"))
     {
       reader.NextLine(token); // the rest of the line is a name

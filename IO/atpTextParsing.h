@@ -11,6 +11,15 @@
 namespace atp
 {
 
+/// The byte-order mark some editors put before a text's first word: not content.
+constexpr std::string_view ByteOrderMark = "\xEF\xBB\xBF";
+
+/// `text` without a byte-order mark at its start.
+inline std::string_view WithoutByteOrderMark(std::string_view text)
+{
+  return text.substr(0, ByteOrderMark.size()) == ByteOrderMark ? text.substr(ByteOrderMark.size()) : text;
+}
+
 /// Removes and returns the first word of `text` (words are separated by spaces, tabs and
 /// carriage returns); empty when there is none left.
 inline std::string_view NextWord(std::string_view& text)

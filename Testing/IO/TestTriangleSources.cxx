@@ -801,6 +801,20 @@ TEST_F(TriangleSources, AsciiStl)
   EXPECT_EQ(result.Stats.VerticesRead, 9u);
 }
 
+TEST_F(TriangleSources, ByteOrderMarksAndTrailingCommentsAreNoContent)
+{
+  // A byte-order mark before the first word used to hide an OBJ's first vertex and make an ASCII
+  // STL look binary; a comment after a face's corners was read as a corner.
+  const std::string mark = "\xEF\xBB\xBF";
+  const Result obj = this->Read(
+    this->Write("marked.obj", mark + "v 0 0 0 # origin\nv 1 0 0\nv 0 1 0\nf 1 2 3 # the only face\n"));
+  EXPECT_EQ(obj.Triangles.size(), 1u);
+  EXPECT_EQ(obj.Stats.VerticesRead, 3u);
+  const Mesh mesh = Grid(2, 2, false);
+  const Result stl = this->Read(this->Write("marked.stl", mark + AsciiStlBytes(mesh)));
+  EXPECT_EQ(Soup(stl), ExpectedSoup(mesh));
+}
+
 TEST_F(TriangleSources, AsciiStlInCapitals)
 {
   // Some writers capitalize the keywords; it was taken for a corrupt binary STL.
@@ -1435,6 +1449,7 @@ TEST_F(TriangleSources, ObjErrors)
   this->ExpectError(this->Write("slash.obj", square + "f 1 2 3x/1\n"), "bad face corner '3x/1'");
   this->ExpectError(
     this->Write("short.obj", "v 0 0\n"), "line 1: a vertex needs three coordinates");
+  this->ExpectError(this->Write("edge.obj", square + "f 1 2\n"), "line 4: a face needs 3 corners or more, this one has 2");
   this->ExpectError(
     this->Write("word.obj", "v 0 zero 0\n"), "line 1: expected a coordinate, found 'zero'");
   // Bytes no message can print are escaped: a NUL used to end the message where it stood.
