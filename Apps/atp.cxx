@@ -60,7 +60,8 @@ void SetVolumeOptions(const CommandLine& cl, vtkATPBuilder* builder)
     if (cl.Has("iso") || cl.Has("slab"))
     {
       throw atp::UsageError(std::string("--") + (cl.Has("iso") ? "iso" : "slab") +
-        " is for volumes (.nii, .nii.gz, .vti, or raw with --dims); " + input + " is a mesh");
+        " is for volumes (.nii, .nii.gz, .vti, or raw with --dims); " + input +
+        " is none of these, and a raw volume needs --dims X,Y,Z");
     }
     return;
   }

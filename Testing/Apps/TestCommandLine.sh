@@ -227,7 +227,7 @@ expect 0 "ball.atp: valid" -- "$atp" verify "$work/ball.atp"
 # Mistakes: usage errors (exit 2) before anything is read, bad volumes one line (exit 1).
 expect 2 "volume needs --iso" -- "$atp" build "$work/ball.vti" -o "$work/vx.atp"
 expect 2 "volume needs --iso" -- "$atp" build "$work/sphere.raw" --dims 24,24,24 -o "$work/vx.atp"
-expect 2 "--iso is for volumes.*bumpy-torus.ply is a mesh" -- "$atp" build "$data/bumpy-torus.ply" --iso 3 -o "$work/vx.atp"
+expect 2 "--iso is for volumes.*bumpy-torus.ply is none of these, and a raw volume needs --dims X,Y,Z" -- "$atp" build "$data/bumpy-torus.ply" --iso 3 -o "$work/vx.atp"
 expect 2 "--slab is for volumes" -- "$atp" build "$data/bumpy-torus.ply" --slab 8 -o "$work/vx.atp"
 expect 2 "--spacing is for raw volumes, which need --dims" -- "$atp" build "$work/ball.vti" --iso 3 --spacing 1,1,1 -o "$work/vx.atp"
 expect 2 "--type must be uint8, int16, uint16 or float32, got 'int64'" -- "$atp" build "$work/sphere.raw" --dims 24,24,24 --type int64 --iso 100 -o "$work/vx.atp"
