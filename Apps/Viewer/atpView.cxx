@@ -185,6 +185,12 @@ int main(int argc, char** argv)
     QObject::connect(&window, &atp::ViewerWindow::WarningShown, [](const QString& message) {
       std::fprintf(stderr, "atp view: warning: %s\n", message.toLocal8Bit().constData());
     });
+    // A screenshot with a region drawn coarser than asked is not the picture asked for.
+    QObject::connect(&window, &atp::ViewerWindow::PatchErrorShown, [&](const QString& message) {
+      std::fprintf(stderr, "atp view: error: %s\n", message.toLocal8Bit().constData());
+      status = 1;
+      application.exit(1);
+    });
   }
   const auto saveWhenConverged = [&] {
     auto* poll = new QTimer(&window);

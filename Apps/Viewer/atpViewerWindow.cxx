@@ -105,8 +105,10 @@ ViewerWindow::ViewerWindow(QWidget* parent)
   vtkNew<vtkCallbackCommand> onMapperError;
   onMapperError->SetClientData(this);
   onMapperError->SetCallback([](vtkObject*, unsigned long, void* client, void* call) {
-    static_cast<ViewerWindow*>(client)->statusBar()->showMessage(
-      QString::fromStdString(VtkErrorMessage(static_cast<const char*>(call))));
+    auto* self = static_cast<ViewerWindow*>(client);
+    const QString message = QString::fromStdString(VtkErrorMessage(static_cast<const char*>(call)));
+    self->statusBar()->showMessage(message);
+    emit self->PatchErrorShown(message);
   });
   ModelMapper->AddObserver(vtkCommand::ErrorEvent, onMapperError);
 }

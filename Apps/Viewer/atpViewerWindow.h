@@ -80,6 +80,8 @@ signals:
   void ErrorShown(const QString& message);
   /// A warning was shown to the user; the window goes on as before.
   void WarningShown(const QString& message);
+  /// A patch turned out corrupt while drawing: shown in the status bar, its region left coarser.
+  void PatchErrorShown(const QString& message);
 
 protected:
   void closeEvent(QCloseEvent* event) override;

@@ -43,6 +43,17 @@ cmp -s "$work/torus.atp" "$work/kept.atp" || fail "a session replaced its model"
 expect 0 "" -- "$atp" view "$work/torus.atp" --size 320x240 --tolerance 4 --record "$work/still.camera" \
   --screenshot "$work/still.png"
 is_png "$work/still.png"
+
+# A corrupt patch fails a scripted session: its picture would miss what was asked for.
+cp "$work/torus.atp" "$work/corrupt.atp"
+patches=$(od -An -t u8 -j 56 -N 8 "$work/corrupt.atp" | tr -d ' ')
+size=$(stat -c %s "$work/corrupt.atp")
+for ((offset = patches + 100; offset < size; offset += 997)); do
+  printf '\xa5' | dd of="$work/corrupt.atp" bs=1 seek="$offset" conv=notrunc status=none
+done
+expect 1 "^atp view: error: .*corrupt.atp: node [0-9]+: patch checksum mismatch: the patch is corrupt" -- \
+  "$atp" view "$work/corrupt.atp" --size 320x240 --tolerance 4 --screenshot "$work/corrupt.png"
+[ ! -e "$work/corrupt.png" ] || fail "a screenshot of a model with corrupt patches was saved"
 grep -qE '^0 ' "$work/still.camera" && passed=$((passed + 1)) || fail "no keyframe recorded at time 0"
 
 # Half a turn around the torus's axis (z), played back, then the screenshot.
