@@ -2,9 +2,15 @@
 
 #include "vtk_zlib.h"
 
+#include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
+#include <iomanip>
 #include <sstream>
+#include <string>
+
+#include <sys/stat.h>
 
 namespace atp
 {
@@ -36,6 +42,60 @@ std::uint32_t Read(const unsigned char* p, int bytes, bool bigEndian)
     value |= std::uint32_t(p[bigEndian ? bytes - 1 - i : i]) << (8 * i);
   }
   return value;
+}
+/// The voxels a header declares must be in the file (VTK allocates them before it finds them
+/// missing, and prints its own allocation error on the way): after the header in a .nii, at most
+/// deflate's ratio (about 1032:1) of the compressed bytes in a .nii.gz.
+std::string VoxelBytesProblem(const std::string& path, const unsigned char* header, bool nifti1,
+  bool bigEndian, double voxOffset, int bits)
+{
+  const std::size_t dimAt = nifti1 ? 40 : 16;
+  const int wordBytes = nifti1 ? 2 : 8;
+  const auto dim = [&](int i) {
+    const unsigned char* p = header + dimAt + std::size_t(i * wordBytes);
+    if (nifti1)
+    {
+      return double(std::int16_t(Read(p, 2, bigEndian)));
+    }
+    const std::uint64_t low = Read(p + (bigEndian ? 4 : 0), 4, bigEndian);
+    const std::uint64_t high = Read(p + (bigEndian ? 0 : 4), 4, bigEndian);
+    return double(std::int64_t(high << 32 | low));
+  };
+  const int dimensions = int(std::min(7.0, std::max(0.0, dim(0))));
+  double voxels = 1;
+  std::string shape;
+  for (int i = 1; i <= dimensions; ++i)
+  {
+    voxels *= std::max(1.0, dim(i));
+    shape += (i > 1 ? "x" : "") + std::to_string(std::int64_t(std::max(1.0, dim(i))));
+  }
+  struct stat file{};
+  unsigned char magic[2] = { 0, 0 };
+  if (::stat(path.c_str(), &file) != 0)
+  {
+    return std::string();
+  }
+  if (FILE* in = std::fopen(path.c_str(), "rb"))
+  {
+    const std::size_t got = std::fread(magic, 1, 2, in);
+    std::fclose(in);
+    if (got != 2)
+    {
+      return std::string();
+    }
+  }
+  const bool gzipped = magic[0] == 0x1f && magic[1] == 0x8b;
+  const double held = gzipped ? 1032.0 * double(file.st_size) : double(file.st_size) - voxOffset;
+  const double bytes = voxels * bits / 8;
+  if (bytes > held)
+  {
+    std::ostringstream message;
+    message << (gzipped ? "" : "truncated: ") << "its NIfTI header declares " << shape << " voxels (" << std::fixed << std::setprecision(0)
+            << bytes << " bytes), more than the file "
+            << (gzipped ? "can hold compressed" : "holds");
+    return message.str();
+  }
+  return std::string();
 }
 } // namespace
 
@@ -93,7 +153,7 @@ std::string NiftiHeaderProblem(const std::string& path)
   {
     if (type.Code == code)
     {
-      return type.Bits == bits ? std::string()
+      return type.Bits == bits ? VoxelBytesProblem(path, header, nifti1, bigEndian, voxOffset, bits)
                                : "NIfTI datatype " + std::to_string(code) + " has " +
           std::to_string(type.Bits) + " bits per voxel, the header says " + std::to_string(bits);
     }

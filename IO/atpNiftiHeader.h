@@ -12,7 +12,7 @@ namespace atp
 /// Why the NIfTI-1 or NIfTI-2 file (.nii, or .nii.gz) at `path` cannot be read as a volume of
 /// one scalar per voxel, or an empty string: a header that is no NIfTI header, or a datatype
 /// other than 8, 16, 32 or 64-bit integers or 32 or 64-bit floats, or whose bits per voxel
-/// disagree with it.
+/// disagree with it, or more voxels than the file holds (or, gzipped, could hold).
 std::string NiftiHeaderProblem(const std::string& path);
 
 } // namespace atp
