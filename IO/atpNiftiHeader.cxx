@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
 #include <iomanip>
 #include <sstream>
@@ -46,8 +45,8 @@ std::uint32_t Read(const unsigned char* p, int bytes, bool bigEndian)
 /// The voxels a header declares must be in the file (VTK allocates them before it finds them
 /// missing, and prints its own allocation error on the way): after the header in a .nii, at most
 /// deflate's ratio (about 1032:1) of the compressed bytes in a .nii.gz.
-std::string VoxelBytesProblem(const std::string& path, const unsigned char* header, bool nifti1,
-  bool bigEndian, double voxOffset, int bits)
+std::string VoxelBytesProblem(const std::string& path, bool gzipped, const unsigned char* header,
+  bool nifti1, bool bigEndian, double voxOffset, int bits)
 {
   const std::size_t dimAt = nifti1 ? 40 : 16;
   const int wordBytes = nifti1 ? 2 : 8;
@@ -70,21 +69,10 @@ std::string VoxelBytesProblem(const std::string& path, const unsigned char* head
     shape += (i > 1 ? "x" : "") + std::to_string(std::int64_t(std::max(1.0, dim(i))));
   }
   struct stat file{};
-  unsigned char magic[2] = { 0, 0 };
   if (::stat(path.c_str(), &file) != 0)
   {
     return std::string();
   }
-  if (FILE* in = std::fopen(path.c_str(), "rb"))
-  {
-    const std::size_t got = std::fread(magic, 1, 2, in);
-    std::fclose(in);
-    if (got != 2)
-    {
-      return std::string();
-    }
-  }
-  const bool gzipped = magic[0] == 0x1f && magic[1] == 0x8b;
   const double held = gzipped ? 1032.0 * double(file.st_size) : double(file.st_size) - voxOffset;
   const double bytes = voxels * bits / 8;
   if (bytes > held)
@@ -105,8 +93,10 @@ std::string NiftiHeaderProblem(const std::string& path)
   // gzread reads uncompressed files as they are.
   gzFile file = gzopen(path.c_str(), "rb");
   const int got = file ? gzread(file, header, sizeof header) : -1;
+  bool gzipped = false;
   if (file)
   {
+    gzipped = gzdirect(file) == 0; // known once something has been read
     gzclose(file);
   }
   if (got < int(sizeof header))
@@ -153,7 +143,7 @@ std::string NiftiHeaderProblem(const std::string& path)
   {
     if (type.Code == code)
     {
-      return type.Bits == bits ? VoxelBytesProblem(path, header, nifti1, bigEndian, voxOffset, bits)
+      return type.Bits == bits ? VoxelBytesProblem(path, gzipped, header, nifti1, bigEndian, voxOffset, bits)
                                : "NIfTI datatype " + std::to_string(code) + " has " +
           std::to_string(type.Bits) + " bits per voxel, the header says " + std::to_string(bits);
     }

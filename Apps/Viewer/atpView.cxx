@@ -77,13 +77,14 @@ atp::CommandLine Options()
 /// model, a recording over the path it plays).
 void CheckOutputs(const atp::CommandLine& cl)
 {
-  std::vector<std::string> taken;
-  for (const char* input : { "", "play" })
+  std::vector<std::string> taken; // the inputs, then each output checked
+  if (cl.PositionalCount() > 0)
   {
-    if (*input ? cl.Has(input) : cl.PositionalCount() > 0)
-    {
-      taken.push_back(*input ? cl.Get(input) : cl.Positional(0));
-    }
+    taken.push_back(cl.Positional(0));
+  }
+  if (cl.Has("play"))
+  {
+    taken.push_back(cl.Get("play"));
   }
   const std::pair<const char*, const char*> outputs[] = { { "output", ".atp" }, { "screenshot", ".png" },
     { "record", ".camera" } };
