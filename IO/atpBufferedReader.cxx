@@ -31,6 +31,7 @@ void BufferedReader::Seek(std::uint64_t offset, std::uint64_t line)
   this->AtEndOfFile = false;
   this->CurrentLine = line;
   this->ReturnedLine = line;
+  this->AfterCarriageReturn = false;
 }
 
 bool BufferedReader::Fill(std::size_t need)
@@ -68,7 +69,9 @@ bool BufferedReader::NextToken(std::string_view& token)
   {
     while (this->Next < this->End && IsSpace(this->Buffer[this->Next]))
     {
-      this->CurrentLine += this->Buffer[this->Next] == '\n';
+      const unsigned char c = this->Buffer[this->Next];
+      this->CurrentLine += unsigned(c == '\r') | unsigned(c == '\n' && !this->AfterCarriageReturn);
+      this->AfterCarriageReturn = c == '\r';
       ++this->Next;
     }
     if (this->Next == this->End)
@@ -98,7 +101,28 @@ bool BufferedReader::NextToken(std::string_view& token)
       reinterpret_cast<const char*>(this->Buffer.data() + this->Next), end - this->Next);
     this->ReturnedLine = this->CurrentLine;
     this->Next = end;
+    this->AfterCarriageReturn = false;
     return true;
+  }
+}
+
+bool BufferedReader::RestOfLineIsBlank()
+{
+  for (;;)
+  {
+    while (this->Next < this->End && IsSpace(this->Buffer[this->Next]) &&
+      this->Buffer[this->Next] != '\n' && this->Buffer[this->Next] != '\r')
+    {
+      ++this->Next;
+    }
+    if (this->Next < this->End)
+    {
+      return this->Buffer[this->Next] == '\n' || this->Buffer[this->Next] == '\r';
+    }
+    if (!this->Fill(1))
+    {
+      return true;
+    }
   }
 }
 
@@ -110,28 +134,42 @@ bool BufferedReader::NextLine(std::string_view& line)
     {
       return false;
     }
+    const bool restOfLineEnd = this->AfterCarriageReturn && this->Buffer[this->Next] == '\n';
+    this->AfterCarriageReturn = false;
+    if (restOfLineEnd)
+    {
+      ++this->Next; // the "\n" of a "\r\n" that NextToken read up to
+      continue;
+    }
     const unsigned char* start = this->Buffer.data() + this->Next;
-    const void* newline = std::memchr(start, '\n', this->End - this->Next);
-    if (newline || this->AtEndOfFile)
+    const std::size_t available = this->End - this->Next;
+    const auto* newline = static_cast<const unsigned char*>(std::memchr(start, '\n', available));
+    std::size_t length = newline ? static_cast<std::size_t>(newline - start) : available;
+    const auto* carriage = static_cast<const unsigned char*>(std::memchr(start, '\r', length));
+    // Read on when the line may go on past the buffer, or when a "\r" is its last byte: whether a
+    // "\n" follows decides where the next line starts.
+    const bool lastIsCarriage = carriage && carriage + 1 == start + available;
+    if (!this->AtEndOfFile && (lastIsCarriage || (!carriage && !newline)))
     {
-      std::size_t length = newline
-        ? static_cast<std::size_t>(static_cast<const unsigned char*>(newline) - start)
-        : this->End - this->Next;
-      this->Next += length + (newline ? 1 : 0);
-      if (length > 0 && start[length - 1] == '\r')
+      if (available == this->Buffer.size())
       {
-        --length;
+        this->FailTooLong("line");
       }
-      line = std::string_view(reinterpret_cast<const char*>(start), length);
-      this->ReturnedLine = this->CurrentLine;
-      this->CurrentLine += newline ? 1 : 0;
-      return true;
+      this->Fill(available + 1);
+      continue;
     }
-    if (this->End - this->Next == this->Buffer.size())
+    std::size_t consumed = length + (newline ? 1 : 0);
+    if (carriage)
     {
-      this->FailTooLong("line");
+      length = static_cast<std::size_t>(carriage - start);
+      const bool crlf = length + 1 < available && carriage[1] == '\n';
+      consumed = length + (crlf ? 2 : 1);
     }
-    this->Fill(this->End - this->Next + 1);
+    this->Next += consumed;
+    line = std::string_view(reinterpret_cast<const char*>(start), length);
+    this->ReturnedLine = this->CurrentLine;
+    this->CurrentLine += carriage || newline ? 1 : 0;
+    return true;
   }
 }
 

@@ -40,8 +40,15 @@ public:
     return p;
   }
 
+  /// Lines end with "\n", "\r\n" or a lone "\r" (classic Mac OS text), for lines and for the
+  /// line numbers of tokens alike.
+
   /// The next whitespace-separated token; false at the end of the file.
   bool NextToken(std::string_view& token);
+
+  /// Whether only blanks are left on the current line (the file's end ends it too). Reads past
+  /// the blanks, not the line's end.
+  bool RestOfLineIsBlank();
 
   /// The rest of the current line without its line ending; false at the end of the file.
   bool NextLine(std::string_view& line);
@@ -67,6 +74,9 @@ private:
   bool AtEndOfFile = false;
   std::uint64_t CurrentLine = 1;
   std::uint64_t ReturnedLine = 1;
+  /// The last byte read between tokens was a carriage return, which counted as a line end: a
+  /// "\n" right after it belongs to the same one.
+  bool AfterCarriageReturn = false;
 };
 
 } // namespace atp

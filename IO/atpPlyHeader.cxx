@@ -67,11 +67,15 @@ PlyHeader ReadPlyHeader(const InputFile& file)
     return t;
   };
 
+  // Lines end with "\n" or "\r\n" (NextWord reads the "\r" as a blank), or with a lone "\r"
+  // (classic Mac OS) when the first one does: a binary body may start with any byte.
+  const char lineEnd =
+    text.compare(0, 4, "ply\r") == 0 && text.compare(0, 5, "ply\r\n") != 0 ? '\r' : '\n';
   std::size_t lineStart = 0;
   bool formatSeen = false;
   for (std::uint64_t line = 1;; ++line)
   {
-    std::size_t newline = text.find('\n', lineStart);
+    std::size_t newline = text.find(lineEnd, lineStart);
     if (newline == std::string::npos)
     {
       if (line == 1 && text.compare(0, 3, "ply") != 0)

@@ -181,6 +181,10 @@ public:
     return true;
   }
 
+  /// Binary records have no layout beyond their bytes.
+  void BeginRecord(const char*, std::uint64_t) {}
+  void EndRecord() {}
+
   [[noreturn]] void Fail(const std::string& problem) const { this->Reader.File().Fail(problem); }
 
 private:
@@ -197,7 +201,8 @@ private:
   BufferedReader& Reader;
 };
 
-/// ASCII values: whitespace-separated tokens; `false` from a read means the file ended first.
+/// ASCII values: whitespace-separated tokens, a record to a line; `false` from a read means the
+/// file ended first.
 class AsciiDecoder
 {
 public:
@@ -206,10 +211,26 @@ public:
   {
   }
 
+  /// A record's values stand on one line, and nothing else does: read across lines, a value
+  /// too many or too few would shift every value after it into the wrong property.
+  void BeginRecord(const char* element, std::uint64_t index)
+  {
+    this->RecordElement = element;
+    this->RecordIndex = index;
+    this->RecordLine = 0;
+  }
+  void EndRecord()
+  {
+    if (!this->Reader.RestOfLineIsBlank())
+    {
+      this->FailRecord(this->Reader.Line(), "has more values on its line than the header's properties");
+    }
+  }
+
   bool Integer(PlyType type, std::int64_t& value)
   {
     std::string_view token;
-    if (!this->Reader.NextToken(token))
+    if (!this->NextValue(token))
     {
       return false;
     }
@@ -224,7 +245,7 @@ public:
   bool Real(PlyType type, double& value)
   {
     std::string_view token;
-    if (!this->Reader.NextToken(token))
+    if (!this->NextValue(token))
     {
       return false;
     }
@@ -253,7 +274,7 @@ public:
     std::string_view token;
     for (std::uint64_t i = 0; i < n; ++i)
     {
-      if (!this->Reader.NextToken(token))
+      if (!this->NextValue(token))
       {
         return false;
       }
@@ -267,6 +288,30 @@ public:
   }
 
 private:
+  /// The record's next value; it must be on the line of the record's first.
+  bool NextValue(std::string_view& token)
+  {
+    if (!this->Reader.NextToken(token))
+    {
+      return false;
+    }
+    if (this->RecordLine == 0)
+    {
+      this->RecordLine = this->Reader.Line();
+    }
+    else if (this->Reader.Line() != this->RecordLine)
+    {
+      this->FailRecord(this->RecordLine, "has fewer values on its line than the header's properties");
+    }
+    return true;
+  }
+
+  [[noreturn]] void FailRecord(std::uint64_t line, const std::string& problem) const
+  {
+    this->Reader.File().FailAtLine(
+      line, std::string(this->RecordElement) + " " + std::to_string(this->RecordIndex) + " " + problem);
+  }
+
   /// A value of an integer property must be one its type holds: text can say anything.
   void CheckRange(PlyType type, double value, std::string_view token) const
   {
@@ -290,6 +335,9 @@ private:
   }
 
   BufferedReader& Reader;
+  const char* RecordElement = "";
+  std::uint64_t RecordIndex = 0;
+  std::uint64_t RecordLine = 0; ///< of the record's first value; 0 before it
 };
 
 /// List lengths come from the file: a negative one is an error, and a corner list must fit in
@@ -315,6 +363,7 @@ template<class Decoder>
 bool ReadRecord(Decoder& decoder, const std::vector<Field>& fields, Record& record,
   const char* element, std::uint64_t index)
 {
+  decoder.BeginRecord(element, index);
   for (const Field& field : fields)
   {
     if (!field.IsList)
@@ -348,6 +397,7 @@ bool ReadRecord(Decoder& decoder, const std::vector<Field>& fields, Record& reco
       return false;
     }
   }
+  decoder.EndRecord();
   return true;
 }
 

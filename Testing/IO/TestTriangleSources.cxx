@@ -631,16 +631,85 @@ TEST_F(TriangleSources, AsciiPlyWithPolygons)
   ExpectMesh(this->Read(this->Write("quads.ply", PlyBytes(mesh, options))), mesh, 12);
 }
 
-TEST_F(TriangleSources, AsciiPlyIgnoresLineLayoutAndCarriageReturns)
+/// `text` with every "\n" (in its first `prefix` bytes only, when given) replaced by `lineEnd`.
+std::string WithLineEnds(const std::string& text, const std::string& lineEnd,
+  std::size_t prefix = std::string::npos)
 {
-  const std::string text = "ply\r\nformat ascii 1.0\r\nelement vertex 3\r\nproperty float x\r\n"
-                           "property float y\r\nproperty float z\r\nelement face 1\r\n"
-                           "property list uchar int vertex_indices\r\nend_header\r\n"
-                           "0 0 0\r\n1 0 0 0 1\r\n+0\r\n3 0\r\n1 2";
-  const Result result = this->Read(this->Write("crlf.ply", text));
-  ASSERT_EQ(result.Triangles.size(), 1u);
-  EXPECT_EQ(result.Triangles[0].V[2][1], 1.0f);
-  EXPECT_EQ(result.Triangles[0].BoundaryEdges & 7, 7);
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i)
+  {
+    out += text[i] == '\n' && i < prefix ? lineEnd : std::string(1, text[i]);
+  }
+  return out;
+}
+
+TEST_F(TriangleSources, TextLinesEndWithLineFeedsCarriageReturnsOrBoth)
+{
+  // Classic Mac OS text ends its lines with a carriage return alone: an OBJ read as one line
+  // said "no faces", a PLY header had no end_header line.
+  const Mesh mesh = Grid(3, 2, false);
+  PlyOptions ascii;
+  ascii.Format = "ascii";
+  for (const std::string lineEnd : { "\n", "\r\n", "\r" })
+  {
+    SCOPED_TRACE(lineEnd == "\r" ? "CR" : lineEnd == "\n" ? "LF" : "CRLF");
+    const std::string name = std::to_string(lineEnd.size()) + (lineEnd[0] == '\r' ? "cr" : "lf");
+    EXPECT_EQ(Soup(this->Read(this->Write(name + ".obj", WithLineEnds(ObjBytes(mesh), lineEnd)))),
+      ExpectedSoup(mesh));
+    EXPECT_EQ(Soup(this->Read(this->Write(name + ".ply", WithLineEnds(PlyBytes(mesh, ascii), lineEnd)))),
+      ExpectedSoup(mesh));
+    EXPECT_EQ(Soup(this->Read(this->Write(name + ".stl", WithLineEnds(AsciiStlBytes(mesh), lineEnd)))),
+      ExpectedSoup(mesh));
+
+    // Errors name the line they are on, whatever ends the lines.
+    this->ExpectError(this->Write(name + "-bad.obj",
+                        WithLineEnds("v 0 0 0\n\nv 1 zero 0\nv 0 1 0\nf 1 2 3\n", lineEnd)),
+      "line 3");
+    this->ExpectError(this->Write(name + "-bad.ply",
+                        WithLineEnds("ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\n"
+                                     "property float y\nproperty float z\nend_header\n0 0 0\n\n0 zero 0\n",
+                          lineEnd)),
+      "line 10: expected a number, found 'zero'");
+  }
+
+  // A binary body may begin with any byte: after a header of lone carriage returns, a first
+  // byte 0x0A is the body's, not the rest of a "\r\n".
+  Mesh lineFeedFirst = mesh;
+  std::uint32_t bits = 0x3F80000A; // a float whose little-endian first byte is 0x0A
+  float x;
+  std::memcpy(&x, &bits, sizeof x);
+  lineFeedFirst.Points[0][0] = x;
+  const std::string binary = PlyBytes(lineFeedFirst);
+  const std::size_t body = binary.find("end_header\n") + std::string("end_header\n").size();
+  ASSERT_EQ(binary[body], '\x0A');
+  EXPECT_EQ(Soup(this->Read(this->Write("cr-binary.ply", WithLineEnds(binary, "\r", body)))),
+    ExpectedSoup(lineFeedFirst));
+}
+
+TEST_F(TriangleSources, AsciiPlyRecordsStandOneToALine)
+{
+  // Read as a stream of values, a record with a value too many shifted every value after it
+  // into the wrong property, and the mesh came out wrong without a word.
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                             "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                             "end_header\n";
+  const Result spaced = this->Read(
+    this->Write("spaced.ply", header + "0 0 0 \t\n\n1 0 0\r\n+0\t1 0\n\n3 0 1 2   \n\n"));
+  ASSERT_EQ(spaced.Triangles.size(), 1u);
+  EXPECT_EQ(spaced.Triangles[0].V[2][1], 1.0f);
+  this->ExpectError(this->Write("extra.ply", header + "0 0 0\n1 0 0 7\n0 1 0\n3 0 1 2\n"),
+    "line 11: vertex 1 has more values on its line than the header's properties");
+  this->ExpectError(this->Write("fewer.ply", header + "0 0 0\n1 0\n0 0 1 0\n3 0 1 2\n"),
+    "line 11: vertex 1 has fewer values on its line than the header's properties");
+  this->ExpectError(this->Write("corner.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2 2\n"),
+    "line 13: face 0 has more values on its line than the header's properties");
+  this->ExpectError(this->Write("split.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1\n2\n"),
+    "line 13: face 0 has fewer values on its line than the header's properties");
+  // Elements the mesh does not use are read by the same rule.
+  const std::string other = "ply\nformat ascii 1.0\nelement note 1\nproperty int a\nelement vertex 3\n"
+                            "property float x\nproperty float y\nproperty float z\nend_header\n";
+  this->ExpectError(this->Write("note.ply", other + "5 6\n0 0 0\n1 0 0\n0 1 0\n"),
+    "line 10: note 0 has more values on its line than the header's properties");
 }
 
 TEST_F(TriangleSources, UppercaseExtension)
