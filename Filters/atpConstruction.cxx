@@ -532,15 +532,17 @@ private:
     header.ErrorScale = Options.ErrorScale;
     header.Flags = (Input.HasColors ? ModelFlagColors : 0) |
       (Options.Order == CacheOrder::Fast ? ModelFlagFastCacheOrder : 0);
+    // The last report before the file replaces any old one: a report may cancel the build,
+    // and a cancelled build must leave the old file as it was.
+    if (Progress)
+    {
+      Progress(1);
+    }
     writer.Commit(header);
 
     Stats.Nodes = Forest.Size();
     Stats.Depth = Forest.Depth();
     Stats.FileBytes = std::filesystem::file_size(outputPath);
-    if (Progress)
-    {
-      Progress(1);
-    }
   }
 
   Partitioner& Partition;

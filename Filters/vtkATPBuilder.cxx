@@ -130,6 +130,8 @@ int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, v
 {
   this->ErrorMessage.clear();
   this->WarningMessage.clear();
+  // Figures go to Last only once the build has succeeded: they are the last successful one's.
+  Results running;
   const std::string scratch = this->ScratchDirectory ? this->ScratchDirectory : "";
   try
   {
@@ -145,7 +147,7 @@ int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, v
     {
       throw std::runtime_error(std::string(this->FileName) + ": " + outputProblem);
     }
-    std::unique_ptr<atp::TriangleSource> source = this->OpenSource(inputs);
+    std::unique_ptr<atp::TriangleSource> source = this->OpenSource(inputs, running);
     atp::CheckCoordinateRange(source->Bounds(), this->InputFileName ? this->InputFileName : PolyDataInputName);
     atp::PartitionOptions options;
     options.LeafCapacity = std::uint32_t(this->LeafCapacity);
@@ -155,7 +157,7 @@ int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, v
 
     this->ExpectedTriangles = source->ExpectedTriangles();
     const double expected = double(this->ExpectedTriangles);
-    const double partitionStart = this->Last->FromVolume ? ContourShare : 0;
+    const double partitionStart = running.FromVolume ? ContourShare : 0;
     this->SetProgressText("partitioning");
     this->UpdateProgress(partitionStart);
     auto partitioner = atp::PartitionStream(*source, options, [&](std::uint64_t done) {
@@ -166,10 +168,10 @@ int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, v
       }
       this->ThrowIfAborted();
     });
-    this->Last->Input = source->Stats();
-    this->Last->Partition = partitioner->Stats();
-    this->Last->PartitionSeconds = SecondsSince(phaseStart);
-    this->Last->PartitionCpuSeconds = atp::ProcessCpuSeconds() - phaseCpuStart;
+    running.Input = source->Stats();
+    running.Partition = partitioner->Stats();
+    running.PartitionSeconds = SecondsSince(phaseStart);
+    running.PartitionCpuSeconds = atp::ProcessCpuSeconds() - phaseCpuStart;
     phaseStart = std::chrono::steady_clock::now();
     phaseCpuStart = atp::ProcessCpuSeconds();
     const atp::Box bounds = source->Bounds();
@@ -182,13 +184,14 @@ int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, v
     construction.Runner = this->JobRunner;
     construction.ScratchDirectory = scratch;
     this->SetProgressText("simplifying");
-    this->Last->Construction = atp::BuildModel(*partitioner, bounds, this->Last->Input,
+    running.Construction = atp::BuildModel(*partitioner, bounds, running.Input,
       construction, this->FileName, [&](double fraction) {
         this->UpdateProgress(PartitionShare + (1 - PartitionShare) * fraction);
         this->ThrowIfAborted();
       });
-    this->Last->ConstructionSeconds = SecondsSince(phaseStart);
-    this->Last->ConstructionCpuSeconds = atp::ProcessCpuSeconds() - phaseCpuStart;
+    running.ConstructionSeconds = SecondsSince(phaseStart);
+    running.ConstructionCpuSeconds = atp::ProcessCpuSeconds() - phaseCpuStart;
+    *this->Last = running;
     this->UpdateProgress(1);
     if (const std::uint64_t atRandom = this->Last->Construction.DiamondsFacingAtRandom)
     {
@@ -251,11 +254,11 @@ double vtkATPBuilder::GetConstructionCpuSeconds() const
   return this->Last->ConstructionCpuSeconds;
 }
 
-std::unique_ptr<atp::TriangleSource> vtkATPBuilder::OpenSource(vtkInformationVector** inputs)
+std::unique_ptr<atp::TriangleSource> vtkATPBuilder::OpenSource(
+  vtkInformationVector** inputs, Results& running)
 {
   const std::string scratch = this->ScratchDirectory ? this->ScratchDirectory : "";
   const bool isoValueSet = !std::isnan(this->IsoValue);
-  this->Last->FromVolume = false;
   if (!this->InputFileName)
   {
     if (isoValueSet)
@@ -290,11 +293,11 @@ std::unique_ptr<atp::TriangleSource> vtkATPBuilder::OpenSource(vtkInformationVec
   this->SetProgressText("contouring");
   this->UpdateProgress(0);
   auto source = atp::OpenVolumeTriangleSource(
-    path, options, scratch, &this->Last->Volume, [this](double fraction) {
+    path, options, scratch, &running.Volume, [this](double fraction) {
       this->UpdateProgress(ContourShare * fraction);
       this->ThrowIfAborted();
     });
-  this->Last->FromVolume = true;
+  running.FromVolume = true;
   return source;
 }
 

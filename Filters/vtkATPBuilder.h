@@ -181,12 +181,13 @@ private:
   vtkATPBuilder(const vtkATPBuilder&) = delete;
   void operator=(const vtkATPBuilder&) = delete;
 
-  /// The triangles of the input file or of the polydata on port 0; throws std::exception.
-  std::unique_ptr<atp::TriangleSource> OpenSource(vtkInformationVector** inputs);
+  struct Results;
+  /// The triangles of the input file or of the polydata on port 0, a volume's figures noted in
+  /// `running`; throws std::exception.
+  std::unique_ptr<atp::TriangleSource> OpenSource(vtkInformationVector** inputs, Results& running);
   /// What a build needs and is not set (an input, an output FileName), or an empty string.
   std::string MissingSetting();
 
-  struct Results;
   std::unique_ptr<Results> Last;
   std::unique_ptr<atp::RawVolumeLayout> RawLayout;
   std::string ErrorMessage;

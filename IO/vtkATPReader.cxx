@@ -50,6 +50,8 @@ int vtkATPReader::RequestInformation(vtkInformation*, vtkInformationVector**, vt
 {
   this->Opened.reset();
   this->SetErrorCode(vtkErrorCode::NoError);
+  // A file that fails to open has no bounds: the last good file's must not stand for them.
+  out->GetInformationObject(0)->Remove(vtkStreamingDemandDrivenPipeline::BOUNDS());
   if (!this->FileName || !*this->FileName)
   {
     vtkErrorMacro(<< "no file name set");

@@ -1016,25 +1016,45 @@ TEST_F(Construction, CorruptionIsDetectedNeverRendered)
 
 TEST_F(Construction, CancelledBuildLeavesThePreviousModelUntouched)
 {
+  // Cancelled at the last progress report too: the file used to replace the old one first,
+  // and the build then failed with the new model in place. The figures stay those of the last
+  // build that succeeded (they were overwritten as the cancelled one went).
   const std::string path = TempPath("cancelled.atp");
-  WriteBytes(path, "previous model");
+  const std::string done = TempPath("done.atp");
   vtkNew<vtkATPBuilder> builder;
   builder->SetInputData(Mesh);
+  builder->SetFileName(done.c_str());
+  ASSERT_EQ(builder->Build(), 1) << builder->GetErrorMessage();
+  const std::uint64_t leaves = builder->GetPartitionStats().Leaves;
+  const std::uint64_t nodes = builder->GetConstructionStats().Nodes;
   builder->SetFileName(path.c_str());
-  builder->SetLeafCapacity(400);
+  builder->SetLeafCapacity(400); // more leaves than the build above
   vtkNew<vtkCallbackCommand> quiet, cancel;
   builder->AddObserver(vtkCommand::ErrorEvent, quiet);
-  cancel->SetCallback([](vtkObject* caller, unsigned long, void*, void* call) {
-    if (*static_cast<double*>(call) > 0.5)
-    {
-      static_cast<vtkATPBuilder*>(caller)->SetAbortExecute(1);
-    }
-  });
   builder->AddObserver(vtkCommand::ProgressEvent, cancel);
-  EXPECT_EQ(builder->Build(), 0);
-  EXPECT_NE(std::string(builder->GetErrorMessage()).find("cancelled"), std::string::npos);
-  EXPECT_EQ(ReadBytes(path), "previous model");
+  for (double threshold : { 0.5, 0.999 })
+  {
+    SCOPED_TRACE(threshold);
+    WriteBytes(path, "previous model");
+    cancel->SetClientData(&threshold);
+    cancel->SetCallback([](vtkObject* caller, unsigned long, void* limit, void* call) {
+      if (*static_cast<double*>(call) > *static_cast<double*>(limit))
+      {
+        static_cast<vtkATPBuilder*>(caller)->SetAbortExecute(1);
+      }
+    });
+    EXPECT_EQ(builder->Build(), 0);
+    EXPECT_NE(std::string(builder->GetErrorMessage()).find("cancelled"), std::string::npos);
+    EXPECT_TRUE(ReadBytes(path) == "previous model") << "the old file was replaced";
+    EXPECT_EQ(builder->GetPartitionStats().Leaves, leaves);
+    EXPECT_EQ(builder->GetConstructionStats().Nodes, nodes);
+    builder->SetAbortExecute(0);
+  }
+  builder->RemoveObserver(cancel);
+  ASSERT_EQ(builder->Build(), 1) << builder->GetErrorMessage();
+  EXPECT_GT(builder->GetPartitionStats().Leaves, leaves);
   std::remove(path.c_str());
+  std::remove(done.c_str());
 }
 
 TEST_F(Construction, InputColorsReachEveryLevel)

@@ -60,6 +60,17 @@ TEST(Reader, PublishesBoundsBeforeReadingData)
   reader->Update();
   ASSERT_NE(reader->GetOutput()->GetModelFile(), nullptr);
   EXPECT_EQ(reader->GetOutput()->GetModelFile()->NodeCount(), model.NodeCount());
+
+  // A file that fails to open publishes no bounds: the torus's used to stay, and a camera reset
+  // framed a model that was not there.
+  vtkNew<vtkCallbackCommand> quiet;
+  reader->AddObserver(vtkCommand::ErrorEvent, quiet);
+  reader->SetFileName("/nonexistent/model.atp");
+  reader->UpdateInformation();
+  EXPECT_FALSE(reader->GetOutputInformation(0)->Has(vtkStreamingDemandDrivenPipeline::BOUNDS()));
+  reader->SetFileName(TorusModel().c_str());
+  reader->UpdateInformation();
+  EXPECT_TRUE(reader->GetOutputInformation(0)->Has(vtkStreamingDemandDrivenPipeline::BOUNDS()));
 }
 
 TEST(Reader, BadFilesAreClearErrorsAndEmptyOutputs)
