@@ -13,6 +13,8 @@
 #include "vtkATPModel.h"
 
 #include "vtkActor.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkExecutive.h"
 #include "vtkInformation.h"
 #include "vtkMatrix3x3.h"
@@ -29,6 +31,7 @@
 #include "vtkProperty.h"
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
+#include "vtkWeakPointer.h"
 #include "vtk_glew.h"
 
 #include <algorithm>
@@ -246,12 +249,63 @@ struct vtkATPMapper::Internals
   vtkNew<vtkMatrix4x4> ModelToDevice, ModelToView;
   vtkNew<vtkMatrix3x3> NormalMatrix;
 
+  /// The renderers it drew in, each with the tag of its StartEvent observer (FrameStarting).
+  std::vector<std::pair<vtkWeakPointer<vtkRenderer>, unsigned long>> Watched;
+
   /// No model, or one that cannot be drawn: nothing drawn and nothing coming, so a
   /// render-until-converged loop ends, and no figures of an earlier model linger.
   void NothingToDraw()
   {
     Stats = atp::RenderStatistics();
     Stats.Converged = true;
+  }
+
+  /// A renderer starts a frame: it draws nothing of the model unless Render says otherwise.
+  /// VTK does not call Render for an actor it culls (the model wholly outside the view), and
+  /// the figures of the last frame that drew would stand for it: not converged for ever, or
+  /// patches listed as drawn that are no longer on screen.
+  void FrameStarting()
+  {
+    Stats.Patches = 0;
+    Stats.Triangles = 0;
+    Stats.CacheHits = 0;
+    Stats.CacheMisses = 0;
+    Stats.Uploads = 0;
+    Stats.UploadBytes = 0;
+    Stats.CutNodes = 0;
+    Stats.CutSeconds = Stats.UploadSeconds = Stats.DrawSeconds = 0;
+    Stats.Converged = true;
+    Cut.Drawn.clear();
+    Cut.Missing.clear();
+    Cut.Held.clear();
+  }
+
+  /// Watches the renderer's frames (FrameStarting), once.
+  void Watch(vtkRenderer* renderer)
+  {
+    Watched.erase(std::remove_if(Watched.begin(), Watched.end(), [](const auto& w) { return !w.first; }),
+      Watched.end());
+    if (std::any_of(Watched.begin(), Watched.end(), [&](const auto& w) { return w.first == renderer; }))
+    {
+      return;
+    }
+    vtkNew<vtkCallbackCommand> starting;
+    starting->SetClientData(this);
+    starting->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
+      static_cast<Internals*>(self)->FrameStarting();
+    });
+    Watched.emplace_back(renderer, renderer->AddObserver(vtkCommand::StartEvent, starting));
+  }
+
+  ~Internals()
+  {
+    for (const auto& [renderer, tag] : Watched)
+    {
+      if (renderer)
+      {
+        renderer->RemoveObserver(tag);
+      }
+    }
   }
 
   void Reset()
@@ -349,6 +403,7 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
 {
   Internals& in = *this->Impl;
   const Clock::time_point frameStart = Clock::now();
+  in.Watch(renderer);
   if (this->GetNumberOfInputConnections(0) > 0)
   {
     this->GetInputAlgorithm()->Update();

@@ -157,6 +157,29 @@ TEST(Mapper, FramesNeverWaitForDecoding)
   EXPECT_GT(scene.Mapper->GetStatistics().Patches, std::size_t(atp::RootCount));
 }
 
+TEST(Mapper, AFrameThatCullsTheModelIsConvergedWithNothingDrawn)
+{
+  // VTK does not call Render for an actor it culls: the figures of the last frame that drew
+  // stood for such frames, and a render-until-converged loop never ended.
+  AtpScene scene;
+  scene.Mapper->SetUploadBudget(64 << 10); // a few patches per frame: not converged after one
+  vtkRenderer* renderer = FirstRenderer(scene.Window);
+  AimCamera(renderer, 30, 40, 2.0);
+  scene.Window->Render();
+  ASSERT_FALSE(scene.Mapper->GetConverged());
+  const std::uint64_t frames = scene.Mapper->GetStatistics().Frame;
+  renderer->GetActiveCamera()->Yaw(180); // the model behind the viewer
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetStatistics().Frame, frames) << "VTK drew the actor: nothing tested";
+  EXPECT_TRUE(scene.Mapper->GetConverged());
+  EXPECT_TRUE(scene.Mapper->GetDrawnNodes().empty());
+  EXPECT_EQ(scene.Mapper->GetStatistics().Patches, 0u);
+  renderer->GetActiveCamera()->Yaw(180);
+  EXPECT_LT(RenderUntilConverged(scene.Window, scene.Mapper, 2000), 2000);
+  EXPECT_GT(scene.Mapper->GetStatistics().Patches, std::size_t(atp::RootCount));
+  EXPECT_FALSE(scene.Mapper->GetDrawnNodes().empty());
+}
+
 /// The nodes drawn in a view that culls nothing must form a crack-free surface.
 void ExpectCrackFree(const std::vector<unsigned>& drawn)
 {
