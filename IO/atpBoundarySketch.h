@@ -48,6 +48,9 @@ public:
     return this->Entries[u].NeighbourXor != 0 || this->Entries[u].HashXor != 0;
   }
 
+  /// Forgets every triangle added.
+  void Clear() { this->Entries.Assign(this->Entries.Size(), Entry{ 0, 0 }); }
+
   /// Lets the sketch's pages leave resident memory (they stay in its scratch file): all of
   /// them, or those of vertices [first, first + count).
   void ReleaseResidentPages() const;

@@ -81,6 +81,35 @@ MeshTriangleSource::MeshTriangleSource(
     this->Grid = QuantizationGrid::ForBounds(this->VertexBounds.Min.data(), this->VertexBounds.Max.data());
   }
   this->FirstPass();
+  if (!this->UsedBounds.IsEmpty() && this->UsedBounds != this->VertexBounds)
+  {
+    // Vertices no face uses lie outside the faces' box (a stray point of a scan, what a clip
+    // left behind): the model's box, and the grid its precision comes from, are the faces'.
+    // Which triangles the grid leaves an area decides what the first pass kept: again.
+    this->VertexBounds = this->UsedBounds;
+    this->Grid = QuantizationGrid::ForBounds(this->VertexBounds.Min.data(), this->VertexBounds.Max.data());
+    this->Sketch.Clear();
+    this->NormalSums.Assign(this->Vertices.Count, { { 0, 0, 0 } });
+    this->InputUses.Assign(this->Vertices.Count, 0);
+    this->Statistics.FacesRead = 0;
+    this->Statistics.DegenerateDropped = 0;
+    this->KeptTriangles = 0;
+    this->FirstPass();
+  }
+  if (this->KeptTriangles == 0)
+  {
+    // Coordinates far larger than the mesh's detail are the usual cause: say what precision
+    // the model keeps.
+    char precision[160];
+    std::snprintf(precision, sizeof(precision),
+      "; coordinates are kept as 32-bit floats on a grid of step %g, the float spacing at the "
+      "largest coordinate", this->Grid.Step);
+    throw InputError(this->Path + ": empty mesh (no triangles: " +
+      (this->Statistics.FacesRead == 0
+          ? std::string("it has no faces")
+          : "all " + std::to_string(this->Statistics.DegenerateDropped) + " are degenerate" + precision) +
+      ")");
+  }
   this->CollectOpenEdgeEnds();
 }
 
@@ -115,7 +144,7 @@ void MeshTriangleSource::ReleaseVertexPages(std::uint64_t first, std::uint64_t c
   }
 }
 
-bool MeshTriangleSource::Keep(const std::uint32_t triangle[3], float corners[3][3]) const
+bool MeshTriangleSource::GetCorners(const std::uint32_t triangle[3], float corners[3][3]) const
 {
   if (triangle[0] == triangle[1] || triangle[1] == triangle[2] || triangle[2] == triangle[0])
   {
@@ -129,6 +158,11 @@ bool MeshTriangleSource::Keep(const std::uint32_t triangle[3], float corners[3][
       corners[c][a] += 0.0f; // -0 becomes +0: one point, one bit pattern for welding
     }
   }
+  return true;
+}
+
+bool MeshTriangleSource::HasArea(const float corners[3][3]) const
+{
   return !HasZeroArea(corners) && !this->VanishesOnTheGrid(corners);
 }
 
@@ -191,7 +225,16 @@ void MeshTriangleSource::FirstPass()
           continue;
         }
         this->BoundResidentMemory();
-        if (!this->Keep(triangle, corners))
+        if (!this->GetCorners(triangle, corners))
+        {
+          ++this->Statistics.DegenerateDropped;
+          continue;
+        }
+        for (const float* corner : corners)
+        {
+          this->UsedBounds.Add(corner);
+        }
+        if (!this->HasArea(corners))
         {
           ++this->Statistics.DegenerateDropped;
           continue;
@@ -222,20 +265,6 @@ void MeshTriangleSource::FirstPass()
         }
       }
     });
-  if (this->KeptTriangles == 0)
-  {
-    // Coordinates far larger than the mesh's detail are the usual cause: say what precision
-    // the model keeps.
-    char precision[160];
-    std::snprintf(precision, sizeof(precision),
-      "; coordinates are kept as 32-bit floats on a grid of step %g, the float spacing at the "
-      "largest coordinate", this->Grid.Step);
-    throw InputError(this->Path + ": empty mesh (no triangles: " +
-      (this->Statistics.FacesRead == 0
-          ? std::string("the file has no faces")
-          : "all " + std::to_string(this->Statistics.DegenerateDropped) + " are degenerate" + precision) +
-      ")");
-  }
   this->Mesh->Rewind();
   this->Fans.Reset(PolygonBatch());
 }
@@ -371,7 +400,7 @@ std::size_t MeshTriangleSource::Read(SoupTriangle* out, std::size_t max)
     }
     this->BoundResidentMemory();
     SoupTriangle& soup = out[n];
-    if (!this->Keep(triangle, soup.V))
+    if (!this->GetCorners(triangle, soup.V) || !this->HasArea(soup.V))
     {
       continue;
     }

@@ -22,7 +22,7 @@ namespace atp
 class MeshTriangleSource final : public TriangleSource
 {
 public:
-  /// Checks the vertices, computes the bounds and makes the first pass over the faces.
+  /// Checks the vertices, makes the first pass over the faces and bounds the vertices they use.
   /// Throws InputError naming `path` (bad input, or no triangle left).
   MeshTriangleSource(std::unique_ptr<PolygonMesh> mesh, const std::string& path,
     const std::string& scratchDirectory);
@@ -39,8 +39,8 @@ private:
   /// Lets the pages of vertices [first, first + count) that a scan has read leave resident
   /// memory, when the vertex array is a file's mapping.
   void ReleaseVertexPages(std::uint64_t first, std::uint64_t count) const;
-  /// The first pass: boundary sketch, area-weighted vertex normal sums and the triangles per
-  /// vertex.
+  /// The first pass: boundary sketch, area-weighted vertex normal sums, the triangles per
+  /// vertex and the box of the vertices the faces use.
   void FirstPass();
   /// Gives the check the positions of the vertices on edges the sketch found open.
   void CollectOpenEdgeEnds();
@@ -49,9 +49,11 @@ private:
   void CountEdgesBetweenEnds(SoupTriangle& soup);
   void SetCornerNormals(const std::uint32_t triangle[3], SoupTriangle& soup) const;
   void SetCornerColors(const std::uint32_t triangle[3], SoupTriangle& soup) const;
-  /// Gets the corner positions; false for a degenerate triangle, also one the model's grid
-  /// makes degenerate (VanishesOnTheGrid).
-  bool Keep(const std::uint32_t triangle[3], float corners[3][3]) const;
+  /// Gets the corner positions; false for a triangle with a repeated corner.
+  bool GetCorners(const std::uint32_t triangle[3], float corners[3][3]) const;
+  /// False for a degenerate triangle, also one the model's grid makes degenerate
+  /// (VanishesOnTheGrid).
+  bool HasArea(const float corners[3][3]) const;
   /// Whether the model's grid (QuantizationGrid::ForBounds of the input's box), on which the
   /// leaves store the triangle, leaves it no area: a needle thinner than the step, which the
   /// largest coordinate sets.
@@ -66,7 +68,8 @@ private:
   std::string Path;
   std::unique_ptr<PolygonMesh> Mesh;
   VertexView Vertices;
-  Box VertexBounds;
+  Box VertexBounds; ///< of every vertex, then of those the faces use (UsedBounds)
+  Box UsedBounds;
   QuantizationGrid Grid{}; ///< the model's, once the bounds are known
   BoundarySketch Sketch;
   std::shared_ptr<BoundaryEdgeCheck> Check = std::make_shared<BoundaryEdgeCheck>();

@@ -24,6 +24,7 @@ struct VTKATPIO_EXPORT Box
   std::array<double, 3> Max{ { -1e300, -1e300, -1e300 } };
 
   bool IsEmpty() const { return Min[0] > Max[0]; }
+  bool operator!=(const Box& other) const { return Min != other.Min || Max != other.Max; }
   void Add(const float p[3])
   {
     for (int a = 0; a < 3; ++a)

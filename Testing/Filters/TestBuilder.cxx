@@ -417,3 +417,34 @@ TEST(Builder, PrintsItsProperties)
   EXPECT_NE(s.str().find("ScratchDirectory: /var/tmp"), std::string::npos);
   EXPECT_NE(s.str().find("FastCacheOrder: on"), std::string::npos);
 }
+
+TEST(Builder, APointNoCellUsesChangesNothing)
+{
+  // Clip and threshold outputs keep points no cell uses. One far away set the model's box and
+  // the grid of its precision: at 1e6 beside a sheet of 0.01 spacing, 512 of 20,000 finest
+  // triangles were kept, and their corners moved by up to 0.03.
+  vtkNew<vtkPolyData> sheet = WavySheet(60);
+  for (vtkIdType i = 0; i < sheet->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    sheet->GetPoint(i, p);
+    sheet->GetPoints()->SetPoint(i, 0.01 * p[0], 0.01 * p[1], 0.01 * p[2]);
+  }
+  vtkNew<vtkPolyData> stray;
+  stray->DeepCopy(sheet);
+  stray->GetPoints()->InsertNextPoint(1e6, 0, -1e6);
+  const TemporaryPath plain("plain.atp"), strayed("strayed.atp");
+  for (const auto& [mesh, path] : { std::make_pair(sheet.Get(), &plain), std::make_pair(stray.Get(), &strayed) })
+  {
+    vtkNew<vtkATPBuilder> builder;
+    builder->SetInputData(mesh);
+    builder->SetFileName(path->c_str());
+    builder->SetLeafCapacity(500);
+    ASSERT_EQ(builder->Build(), 1) << builder->GetErrorMessage();
+  }
+  std::ifstream a(plain.Path, std::ios::binary), b(strayed.Path, std::ios::binary);
+  const std::string plainBytes((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>());
+  const std::string strayedBytes((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>());
+  EXPECT_TRUE(plainBytes == strayedBytes) << "the unused point changed the model";
+  EXPECT_EQ(atp::ModelFile::Open(strayed.Path).Header().InputTriangles, 2u * 60 * 60);
+}

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -155,4 +156,23 @@ TEST(ScratchArray, ReleasedPagesLeaveMemoryButKeepTheirContents)
   {
     ASSERT_EQ(array[i], i * 2654435761u);
   }
+}
+
+TEST(ScratchArray, AssignHoldsASliceOfResidentMemory)
+{
+  // Released slice by slice, a third of an array of 12-byte elements stayed resident: the
+  // kernel maps a file's pages up to 2 MiB at a time, and a block a release covered only in
+  // part stayed mapped in whole.
+  using Element = std::array<float, 3>;
+  constexpr std::size_t count = std::size_t(12) << 20; // 144 MiB
+  atp::ScratchArray<Element> array(fs::temp_directory_path().string(), count);
+  const long before = atp::testing::MappedFileKiB();
+  array.Assign(count, Element{ { 1, 2, 3 } });
+  EXPECT_LT(atp::testing::MappedFileKiB() - before, 16L << 10) << "KiB left resident by Assign";
+  ASSERT_EQ(array.Size(), count);
+  for (std::size_t i = 0; i < count; i += 100003)
+  {
+    ASSERT_EQ(array[i], (Element{ { 1, 2, 3 } })) << i;
+  }
+  EXPECT_EQ(array[count - 1], (Element{ { 1, 2, 3 } }));
 }

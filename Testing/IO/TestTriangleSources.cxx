@@ -712,6 +712,31 @@ TEST_F(TriangleSources, AsciiPlyRecordsStandOneToALine)
     "line 10: note 0 has more values on its line than the header's properties");
 }
 
+TEST_F(TriangleSources, VerticesNoFaceUsesLeaveTheBoxAndThePrecisionAlone)
+{
+  // A vertex no face uses set the model's box, and with it the grid its precision comes from:
+  // one at 1e6 beside a grid of 0.01 spacing made its triangles too thin for that grid, one
+  // at 1e30 all of them, and either way the box framed a point that is not drawn.
+  Mesh mesh = Grid(40, 40, false);
+  for (auto& p : mesh.Points)
+  {
+    p[0] *= 0.01;
+    p[1] *= 0.01;
+  }
+  for (const double far : { 1e6, 1e30, -1e12 })
+  {
+    SCOPED_TRACE(far);
+    Mesh stray = mesh;
+    stray.Points.push_back({ far, 0.5, far });
+    const Result result = this->Read(this->Write("stray.ply", PlyBytes(stray)));
+    EXPECT_EQ(Soup(result), ExpectedSoup(mesh));
+    EXPECT_EQ(result.Stats.DegenerateDropped, 0u);
+    EXPECT_EQ(result.Stats.VerticesRead, stray.Points.size());
+    EXPECT_EQ(result.Bounds.Min, (std::array<double, 3>{ { 0, 0, 0 } }));
+    EXPECT_EQ(result.Bounds.Max, (std::array<double, 3>{ { double(0.4f), double(0.4f), 0 } }));
+  }
+}
+
 TEST_F(TriangleSources, UppercaseExtension)
 {
   const Mesh mesh = Tetrahedron();
@@ -1177,7 +1202,7 @@ TEST_F(TriangleSources, OpeningLetsGoOfTheVertexPagesItHasRead)
     GTEST_SKIP() << "this kernel does not reset the peak resident memory (clear_refs)";
   }
   EXPECT_LT(grown, 96L << 10) << "KiB of peak resident memory added by opening";
-  EXPECT_EQ(source->Bounds().Max[0], double(vertices - 1));
+  EXPECT_EQ(source->Bounds().Max[0], 2.0) << "the box of the vertices the face uses";
   EXPECT_EQ(source->ExpectedTriangles(), 1u);
 }
 
@@ -1490,7 +1515,7 @@ TEST_F(TriangleSources, EmptyMeshes)
     this->Write("noface-element.ply",
       "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
       "property float z\nend_header\n1 2 3\n"),
-    "empty mesh (no triangles: the file has no faces)");
+    "empty mesh (no triangles: it has no faces)");
   Mesh degenerate;
   degenerate.Points = { { 0, 0, 0 }, { 1, 1, 1 }, { 2, 2, 2 } };
   degenerate.Faces = { { 0, 1, 2 }, { 0, 0, 1 } };
