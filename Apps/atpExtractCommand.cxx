@@ -59,22 +59,13 @@ vtkSmartPointer<vtkAlgorithm> WriterFor(const std::string& path, const std::stri
   stl->SetFileName(file.c_str());
   return stl;
 }
-/// Triangles in `file` (not empty: the readers reject empty meshes), read back by the project's own readers (which reject truncated files)
-/// as the format of `path`; -1 when it cannot be read. VTK's PLY writer does not check its
-/// writes, so a full disk would otherwise pass.
-long long TrianglesIn(const std::string& path, const std::string& file)
+/// Faces in `file`, read back by the project's own readers (which reject truncated files) as
+/// the format its extension names: VTK's PLY writer does not check its writes, so a full disk
+/// would otherwise pass. Throws the reader's error. Its scratch space is the usual one
+/// ($TMPDIR or /tmp), not the output's directory, which a large output may just have filled.
+long long FacesIn(const std::string& file)
 {
-  try
-  {
-    const std::string directory = path.find('/') == std::string::npos ? "." : path.substr(0, path.rfind('/'));
-    // The source opens by extension: the partial file ends like the output.
-    // Opening reads every face once (and rejects a truncated file).
-    return static_cast<long long>(OpenTriangleSource(file, directory)->Stats().FacesRead);
-  }
-  catch (const std::exception&)
-  {
-    return -1;
-  }
+  return static_cast<long long>(OpenTriangleSource(file, "")->Stats().FacesRead);
 }
 } // namespace
 
@@ -207,10 +198,23 @@ int ExtractCommand(const std::vector<std::string>& arguments)
   {
     throw pending.Failure(errors.Message);
   }
-  if (triangles > 0 && TrianglesIn(out, partial) != static_cast<long long>(triangles))
+  if (triangles > 0)
   {
-    throw pending.Failure(std::string(full ? std::strerror(ENOSPC) + std::string(": ") : "") +
-      "the file read back is incomplete");
+    long long readBack = -1;
+    std::string why;
+    try
+    {
+      readBack = FacesIn(partial);
+    }
+    catch (const std::exception& e)
+    {
+      why = std::string(" (") + e.what() + ")";
+    }
+    if (readBack != static_cast<long long>(triangles))
+    {
+      throw pending.Failure(std::string(full ? std::strerror(ENOSPC) + std::string(": ") : "") +
+        "the file read back is incomplete" + why);
+    }
   }
   pending.Commit();
   std::printf("wrote %s: %lld triangles from %lld patches (%s)\n", out.c_str(),
