@@ -3,6 +3,7 @@
 #include "atpCommandLine.h"
 #include "atpModelFile.h"
 #include "atpPendingFile.h"
+#include "atpVtkErrorMessage.h"
 #include "atpTriangleSource.h"
 #include "atpFirstVtkError.h"
 #include "vtkATPExtractCut.h"
@@ -186,13 +187,9 @@ int ExtractCommand(const std::vector<std::string>& arguments)
   const std::string directory = std::filesystem::path(partial).parent_path().string();
   const bool full = ::statvfs(directory.empty() ? "." : directory.c_str(), &disk) == 0 &&
     std::uint64_t(disk.f_bavail) * disk.f_frsize < 12 * std::uint64_t(triangles);
-  if (code == vtkErrorCode::OutOfDiskSpaceError || (code != vtkErrorCode::NoError && full))
-  {
-    throw pending.Failure(std::strerror(ENOSPC));
-  }
   if (code != vtkErrorCode::NoError)
   {
-    throw pending.Failure(vtkErrorCode::GetStringFromErrorCode(code));
+    throw pending.Failure(full ? std::strerror(ENOSPC) : VtkErrorCodeText(code));
   }
   if (!written || !errors.Message.empty())
   {

@@ -2,6 +2,7 @@
 
 #include "atpPendingFile.h"
 #include "atpFirstVtkError.h"
+#include "atpVtkErrorMessage.h"
 
 #include "vtkErrorCode.h"
 #include "vtkImageData.h"
@@ -22,7 +23,7 @@ void WritePng(vtkImageData* image, PendingFile& file)
   writer->Write();
   if (writer->GetErrorCode() != vtkErrorCode::NoError)
   {
-    throw file.Failure(vtkErrorCode::GetStringFromErrorCode(writer->GetErrorCode()));
+    throw file.Failure(VtkErrorCodeText(writer->GetErrorCode()));
   }
   if (!errors.Message.empty())
   {

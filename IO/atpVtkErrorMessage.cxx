@@ -1,5 +1,10 @@
 #include "atpVtkErrorMessage.h"
 
+#include "vtkErrorCode.h"
+
+#include <cerrno>
+#include <cstring>
+
 namespace atp
 {
 
@@ -14,6 +19,16 @@ std::string VtkErrorMessage(const char* text)
   const std::size_t line = message.find('\n') + 1;
   const std::size_t object = message.find("): ", line);
   return object == std::string::npos ? message : message.substr(object + 3);
+}
+
+std::string VtkErrorCodeText(unsigned long code)
+{
+  if (code == vtkErrorCode::OutOfDiskSpaceError)
+  {
+    return std::strerror(ENOSPC);
+  }
+  const char* text = vtkErrorCode::GetStringFromErrorCode(code);
+  return text ? text : "error " + std::to_string(code);
 }
 
 } // namespace atp

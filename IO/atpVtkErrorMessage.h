@@ -14,6 +14,10 @@ namespace atp
 /// Returns MESSAGE without trailing line ends (the whole text when it has no such prefix).
 VTKATPIO_EXPORT std::string VtkErrorMessage(const char* text);
 
+/// What a writer's vtkErrorCode says, in the system's words where it has them (a full disk:
+/// "No space left on device", not "OutOfDiskSpaceError").
+VTKATPIO_EXPORT std::string VtkErrorCodeText(unsigned long code);
+
 } // namespace atp
 
 #endif

@@ -260,8 +260,12 @@ bool ViewerWindow::SaveScreenshot(const QString& path)
   writer->Write();
   if (!errors.Message().empty() || writer->GetErrorCode())
   {
-    ShowError(tr("Cannot save the screenshot"), errors.Message().empty()
-        ? tr("%1: cannot write").arg(path) : QString::fromStdString(errors.Message()));
+    // VTK's messages do not name the file ("Ran out of disk space; deleting file(s) already
+    // written"), and its codes are names, not words.
+    const unsigned long code = writer->GetErrorCode();
+    ShowError(tr("Cannot save the screenshot"),
+      tr("%1: cannot write: %2")
+        .arg(path, QString::fromStdString(code ? VtkErrorCodeText(code) : errors.Message())));
     return false;
   }
   statusBar()->showMessage(tr("Saved %1").arg(path));

@@ -52,6 +52,17 @@ if [ -n "${ATP_FAULTS_NAMESPACE:-}" ]; then
   done
   [ -z "$(ls -A "$work/full")" ] || fail "left on the full disk by extract: $(ls -A "$work/full")"
   umount "$work/full"
+  # Pictures onto it: the file named, in the system's words (VTK's were an error code's name
+  # and, from the viewer, a message that named no file).
+  mount -t tmpfs -o size=16k tmpfs "$work/full"
+  expect 1 "plot.png: cannot write the plot: No space left on device" -- \
+    "$atp" bench "$work/previous.atp" --frames 3 --size 200x150 --plot "$work/full/plot.png"
+  if [ -n "${DISPLAY:-}" ]; then
+    expect 1 "shot.png: cannot write: No space left on device" -- \
+      "$atp" view "$work/previous.atp" --size 640x480 --screenshot "$work/full/shot.png"
+  fi
+  [ -z "$(ls -A "$work/full")" ] || fail "left on the full disk by bench and view: $(ls -A "$work/full")"
+  umount "$work/full"
   # A disk with room for the mesh, not for it twice: reading it back to check it takes its
   # scratch space where any scratch goes, not beside the output (that failed such extracts).
   for extension in ply stl; do
