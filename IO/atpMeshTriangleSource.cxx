@@ -208,7 +208,7 @@ void MeshTriangleSource::FirstPass()
       float corners[3][3];
       while (batch.Triangles.size() < FirstPassBatch::Capacity)
       {
-        if (!this->Fans.Next(triangle))
+        if (!this->Triangles.Next(triangle))
         {
           PolygonBatch polygons;
           facesLeft = facesLeft && this->Mesh->NextBatch(polygons);
@@ -221,7 +221,7 @@ void MeshTriangleSource::FirstPass()
           {
             this->Statistics.DegenerateDropped += polygons.Sizes[k] < 3;
           }
-          this->Fans.Reset(polygons);
+          this->Triangles.Reset(polygons);
           continue;
         }
         this->BoundResidentMemory();
@@ -266,7 +266,7 @@ void MeshTriangleSource::FirstPass()
       }
     });
   this->Mesh->Rewind();
-  this->Fans.Reset(PolygonBatch());
+  this->Triangles.Reset(PolygonBatch());
 }
 
 void MeshTriangleSource::CollectOpenEdgeEnds()
@@ -380,7 +380,7 @@ bool MeshTriangleSource::StartNextBatch()
     }
     return false;
   }
-  this->Fans.Reset(batch);
+  this->Triangles.Reset(batch);
   return true;
 }
 
@@ -390,7 +390,7 @@ std::size_t MeshTriangleSource::Read(SoupTriangle* out, std::size_t max)
   std::uint32_t triangle[3];
   while (n < max)
   {
-    if (!this->Fans.Next(triangle))
+    if (!this->Triangles.Next(triangle))
     {
       if (!this->StartNextBatch())
       {

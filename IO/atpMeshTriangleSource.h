@@ -1,5 +1,5 @@
-// The one path from a format reader's polygons to soup triangles, shared by every format: fan
-// triangulation, dropping degenerate triangles, marking boundary edges with a BoundarySketch
+// The one path from a format reader's polygons to soup triangles, shared by every format:
+// triangulation (TriangleCursor), dropping degenerate triangles, marking boundary edges with a BoundarySketch
 // (checked by position with a BoundaryEdgeCheck) and giving corners their vertex normals. Opening makes a first pass over the faces (sketch, normal
 // sums, counts, errors); Read makes the second.
 #ifndef atpMeshTriangleSource_h
@@ -7,9 +7,9 @@
 
 #include "atpBoundaryEdgeCheck.h"
 #include "atpBoundarySketch.h"
-#include "atpFanCursor.h"
 #include "atpPolygonMesh.h"
 #include "atpQuantizationGrid.h"
+#include "atpTriangleCursor.h"
 #include "atpTriangleSource.h"
 
 #include <array>
@@ -78,7 +78,7 @@ private:
   ScratchArray<std::uint8_t> InputUses;
   InputStats Statistics;
   std::uint64_t KeptTriangles = 0;
-  FanCursor Fans;
+  TriangleCursor Triangles{ this->Vertices };
   bool FacesDone = false;
   std::uint64_t VisitedSinceRelease = 0;
 };

@@ -737,6 +737,121 @@ TEST_F(TriangleSources, VerticesNoFaceUsesLeaveTheBoxAndThePrecisionAlone)
   }
 }
 
+/// An OBJ of one polygon with these corners.
+std::string OnePolygonObj(const std::vector<std::array<double, 3>>& corners)
+{
+  std::ostringstream obj;
+  obj.precision(17);
+  for (const auto& p : corners)
+  {
+    obj << "v " << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+  }
+  obj << 'f';
+  for (std::size_t k = 1; k <= corners.size(); ++k)
+  {
+    obj << ' ' << k;
+  }
+  obj << '\n';
+  return obj.str();
+}
+
+/// Whether (x, y) lies inside the polygon's projection on z = 0 (crossings of a ray along +x).
+bool InsideXY(const std::vector<std::array<double, 3>>& polygon, double x, double y)
+{
+  bool inside = false;
+  for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++)
+  {
+    const auto& a = polygon[i];
+    const auto& b = polygon[j];
+    if ((a[1] > y) != (b[1] > y) && x < (b[0] - a[0]) * (y - a[1]) / (b[1] - a[1]) + a[0])
+    {
+      inside = !inside;
+    }
+  }
+  return inside;
+}
+
+TEST_F(TriangleSources, ConcavePolygonsAreTriangulatedInsideThemselves)
+{
+  // A fan from the first corner covers a convex polygon only: an L, a star or a dart came out
+  // with triangles outside the polygon, overlapping each other, some facing the other way.
+  const std::vector<std::vector<std::array<double, 3>>> shapes = {
+    { { 0, 0, 0 }, { 2, 0, 0 }, { 2, 1, 0 }, { 1, 1, 0 }, { 1, 2, 0 }, { 0, 2, 0 } }, // an L
+    { { 1, 1, 0 }, { 2, 1, 0 }, { 2, 2, 0 }, { 0, 2, 0 }, { 0, 0, 0 }, { 1, 0, 0 } }, // an L from its notch
+    { { 0, 0, 0 }, { 2, 1, 0 }, { 0, 2, 0 }, { 0.5, 1, 0 } },                         // a dart
+    { { 0, 0, 0 }, { 3, 0, 0 }, { 3, 3, 0 }, { 2, 3, 0 }, { 2, 1, 0 }, { 1, 1, 0 }, { 1, 3, 0 },
+      { 0, 3, 0 } }, // a U
+  };
+  std::vector<std::vector<std::array<double, 3>>> cases = shapes;
+  // A star of ten corners.
+  std::vector<std::array<double, 3>> star;
+  for (int k = 0; k < 10; ++k)
+  {
+    const double angle = k * 3.14159265358979 / 5, radius = k % 2 ? 0.4 : 1.0;
+    star.push_back({ radius * std::cos(angle), radius * std::sin(angle), 0 });
+  }
+  cases.push_back(star);
+  for (std::size_t c = 0; c < cases.size(); ++c)
+  {
+    for (const bool reversed : { false, true })
+    {
+      SCOPED_TRACE("shape " + std::to_string(c) + (reversed ? ", wound clockwise" : ""));
+      std::vector<std::array<double, 3>> polygon = cases[c];
+      if (reversed)
+      {
+        std::reverse(polygon.begin(), polygon.end());
+      }
+      double area = 0; // signed, twice, about +z
+      for (std::size_t i = 0; i < polygon.size(); ++i)
+      {
+        const auto& a = polygon[i];
+        const auto& b = polygon[(i + 1) % polygon.size()];
+        area += a[0] * b[1] - b[0] * a[1];
+      }
+      const Result result = this->Read(this->Write("polygon.obj", OnePolygonObj(polygon)));
+      ASSERT_EQ(result.Triangles.size(), polygon.size() - 2);
+      double covered = 0;
+      for (const atp::SoupTriangle& t : result.Triangles)
+      {
+        const double twice = (t.V[1][0] - t.V[0][0]) * (t.V[2][1] - t.V[0][1]) -
+          (t.V[1][1] - t.V[0][1]) * (t.V[2][0] - t.V[0][0]);
+        EXPECT_GT(twice * area, 0) << "a triangle faces against its polygon";
+        covered += twice;
+        const double x = (t.V[0][0] + t.V[1][0] + t.V[2][0]) / 3, y = (t.V[0][1] + t.V[1][1] + t.V[2][1]) / 3;
+        EXPECT_TRUE(InsideXY(polygon, x, y)) << "a triangle outside its polygon";
+      }
+      EXPECT_NEAR(covered, area, 1e-5 * std::fabs(area)) << "the triangles overlap";
+    }
+  }
+
+  // In a plane across x, bent a little out of it: the same, about x.
+  std::vector<std::array<double, 3>> upright;
+  for (const auto& p : shapes[0])
+  {
+    upright.push_back({ 0.01 * p[0] * p[1], p[0], p[1] });
+  }
+  const Result bent = this->Read(this->Write("upright.obj", OnePolygonObj(upright)));
+  ASSERT_EQ(bent.Triangles.size(), 4u);
+  double covered = 0;
+  for (const atp::SoupTriangle& t : bent.Triangles)
+  {
+    covered += (t.V[1][1] - t.V[0][1]) * (t.V[2][2] - t.V[0][2]) - (t.V[1][2] - t.V[0][2]) * (t.V[2][1] - t.V[0][1]);
+  }
+  EXPECT_NEAR(covered, 2 * 3.0, 1e-5);
+
+  // A polygon with no inside keeps the fan: crossing itself (a bow tie), or coming back to a
+  // corner.
+  const Result bowtie = this->Read(this->Write("bowtie.obj", "v 0 0 0\nv 1 1 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 4\n"));
+  ASSERT_EQ(bowtie.Triangles.size(), 2u);
+  EXPECT_EQ(bowtie.Triangles[0].V[1][0], 1.0f); // (1, 2, 3): the fan's first triangle
+  EXPECT_EQ(bowtie.Triangles[0].V[1][1], 1.0f);
+  const Result back = this->Read(
+    this->Write("back.obj", "v 0 0 0\nv 2 0 0\nv 1 1 0\nv 2 2 0\nv 0 2 0\nf 1 2 3 4 5 3\n"));
+  ASSERT_EQ(back.Triangles.size(), 3u); // the fan's (1, 3, 4) has no area
+  EXPECT_EQ(back.Triangles[2].V[1][1], 2.0f); // (1, 5, 3): the fan's last triangle
+  EXPECT_EQ(back.Triangles[2].V[2][0], 1.0f);
+}
+
 TEST_F(TriangleSources, UppercaseExtension)
 {
   const Mesh mesh = Tetrahedron();

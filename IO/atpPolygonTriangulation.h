@@ -1,0 +1,29 @@
+// The triangles of one polygon of an input mesh. A fan (c0, c1, c2), (c0, c2, c3), ... covers a
+// convex polygon and only it; a concave one (an L, a star, a notched CAD face) gets a fan that
+// spills outside it and overlaps itself, so it is triangulated in its plane instead, as
+// VTK's own triangulation of polygons does.
+#ifndef atpPolygonTriangulation_h
+#define atpPolygonTriangulation_h
+
+#include "atpPolygonMesh.h"
+#include "vtkATPIOModule.h" // export macro
+
+#include <cstdint>
+#include <vector>
+
+namespace atp
+{
+
+/// Appends the triangles of the polygon with `count` (3 or more) corners, vertex indices into
+/// `vertices`, to `out` (three indices each, wound as the polygon). A polygon that turns one
+/// way at every corner, seen along its Newell normal, is fanned from its first corner; any
+/// other is triangulated by a constrained Delaunay triangulation of its corners projected on
+/// the plane across its normal's largest component (CGAL), keeping the triangles inside it.
+/// Where that cannot give count - 2 triangles of its own corners (a polygon that crosses itself,
+/// or repeats a corner) the fan stands: such a polygon has no inside to keep.
+VTKATPIO_EXPORT void TriangulatePolygon(const std::uint32_t* corners, std::uint32_t count,
+  const VertexView& vertices, std::vector<std::uint32_t>& out);
+
+} // namespace atp
+
+#endif
