@@ -11,6 +11,31 @@
 namespace atp
 {
 
+std::string CameraProblem(vtkCamera* camera)
+{
+  const auto finite = [](const double* values, int count) {
+    return std::all_of(values, values + count, [](double x) { return std::isfinite(x); });
+  };
+  if (!finite(camera->GetPosition(), 3))
+  {
+    return "its position is not finite";
+  }
+  if (!finite(camera->GetFocalPoint(), 3))
+  {
+    return "its focal point is not finite";
+  }
+  if (camera->GetParallelProjection() && !(camera->GetParallelScale() > 0))
+  {
+    return "its parallel scale is not positive";
+  }
+  vtkMatrix4x4* projection = camera->GetCompositeProjectionTransformMatrix(1, -1, 1);
+  if (!finite(projection->GetData(), 16))
+  {
+    return "its projection is not finite";
+  }
+  return std::string();
+}
+
 void SetTolerancePixels(vtkObject* owner, double& tolerance, double requested)
 {
   if (std::isnan(requested))

@@ -6,6 +6,7 @@
 #include "atpCut.h"
 #include "vtkATPFiltersModule.h"
 
+#include <string>
 
 class vtkCamera;
 class vtkMatrix4x4;
@@ -19,6 +20,11 @@ namespace atp
 /// are set (near and far are left out: clipping ranges follow what is drawn, not the reverse).
 VTKATPFILTERS_EXPORT ViewPoint ViewFromCamera(vtkCamera* camera, int width, int height,
   vtkMatrix4x4* modelToWorld, double tolerancePixels, bool backfaceCulling);
+
+/// Why `camera` gives no view to cut for (a position, focal point or projection that is not
+/// finite, a parallel scale that is not positive), or an empty string. A cut for such a camera
+/// is some arbitrary level: no error would show.
+VTKATPFILTERS_EXPORT std::string CameraProblem(vtkCamera* camera);
 
 /// The TolerancePixels setter of the VTK classes that cut (`owner`, whose member is `tolerance`):
 /// `requested` clamped to [1e-3, 1e6] pixels (finer asks for more than the finest level, coarser

@@ -66,6 +66,7 @@ int vtkATPExtractCut::RequestData(
   const atp::ModelFile* model = input ? input->GetModelFile() : nullptr;
   if (!model)
   {
+    output->Initialize(); // not the last model's cut
     vtkErrorMacro(<< "the input holds no model");
     return 0;
   }
@@ -78,6 +79,10 @@ int vtkATPExtractCut::RequestData(
     }
     else
     {
+      if (const std::string problem = atp::CameraProblem(this->Camera); !problem.empty())
+      {
+        throw std::invalid_argument("Camera refused: " + problem);
+      }
       atp::ViewPoint view = atp::ViewFromCamera(this->Camera, this->ViewportSize[0],
         this->ViewportSize[1], nullptr, this->TolerancePixels, this->BackfaceCulling);
       if (!this->FrustumCulling)

@@ -12,6 +12,7 @@
 #include "vtkCellData.h"
 #include "vtkCommand.h"
 #include "vtkErrorCode.h"
+#include "vtkExecutive.h"
 #include "vtkFeatureEdges.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
@@ -23,6 +24,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <limits>
 #include <set>
@@ -183,6 +185,45 @@ TEST(ExtractCut, RefusesNaNToleranceAndEmptyViewports)
   EXPECT_EQ(extract->GetViewportSize()[0], 640);
   EXPECT_EQ(extract->GetViewportSize()[1], 480);
   EXPECT_EQ(errors.Errors, 3);
+}
+
+TEST(ExtractCut, RefusesACameraWithNoView)
+{
+  // A camera at NaN, or of parallel scale 0, gave some arbitrary level without a word.
+  vtkNew<vtkATPReader> reader;
+  reader->SetFileName(TorusModel().c_str());
+  vtkNew<vtkATPExtractCut> extract;
+  extract->SetInputConnection(reader->GetOutputPort());
+  vtkNew<vtkCamera> camera;
+  camera->SetPosition(0, 0, 10);
+  extract->SetCamera(camera);
+  extract->Update();
+  ASSERT_GT(extract->GetOutput()->GetNumberOfPolys(), 0);
+  ErrorCounter errors;
+  extract->AddObserver(vtkCommand::ErrorEvent, errors.Command);
+  extract->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors.Command);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::function<void()> breakers[] = {
+    [&] { camera->SetPosition(nan, 0, 10); },
+    [&] { camera->SetFocalPoint(0, std::numeric_limits<double>::infinity(), 0); },
+    [&] {
+      camera->ParallelProjectionOn();
+      camera->SetParallelScale(0);
+    },
+  };
+  for (const auto& breakCamera : breakers)
+  {
+    camera->SetPosition(0, 0, 10);
+    camera->SetFocalPoint(0, 0, 0);
+    camera->ParallelProjectionOff();
+    extract->Update();
+    ASSERT_GT(extract->GetOutput()->GetNumberOfPolys(), 0);
+    const int before = errors.Errors;
+    breakCamera();
+    extract->Update();
+    EXPECT_GT(errors.Errors, before);
+    EXPECT_EQ(extract->GetOutput()->GetNumberOfPolys(), 0);
+  }
 }
 
 TEST(ExtractCut, CorruptPatchIsAnError)
