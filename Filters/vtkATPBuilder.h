@@ -50,7 +50,8 @@ public:
   void SetInputData(vtkPolyData* mesh);
 
   ///@{
-  /// Mesh file to stream (used instead of input port 0 when set).
+  /// Mesh file to stream (used instead of input port 0 when set: the port's data is not read,
+  /// but a pipeline still connected there runs first, and its failure fails the build).
   vtkSetStringMacro(InputFileName);
   vtkGetStringMacro(InputFileName);
   ///@}

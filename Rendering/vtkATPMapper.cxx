@@ -258,6 +258,15 @@ struct vtkATPMapper::Internals
   {
     Stats = atp::RenderStatistics();
     Stats.Converged = true;
+    ForgetCut();
+  }
+
+  /// No nodes drawn, none missing: GetDrawnNodes must not list what is not on screen.
+  void ForgetCut()
+  {
+    Cut.Drawn.clear();
+    Cut.Missing.clear();
+    Cut.Held.clear();
   }
 
   /// A renderer starts a frame: it draws nothing of the model unless Render says otherwise.
@@ -275,9 +284,7 @@ struct vtkATPMapper::Internals
     Stats.CutNodes = 0;
     Stats.CutSeconds = Stats.UploadSeconds = Stats.DrawSeconds = 0;
     Stats.Converged = true;
-    Cut.Drawn.clear();
-    Cut.Missing.clear();
-    Cut.Held.clear();
+    ForgetCut();
   }
 
   /// Watches the renderer's frames (FrameStarting), once.

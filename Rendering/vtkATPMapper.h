@@ -89,7 +89,8 @@ public:
   vtkSetClampMacro(DecodeThreads, int, 0, 256);
   vtkGetMacro(DecodeThreads, int);
 
-  /// True when the last frame drew the complete cut its view asks for. A frame of a renderer
+  /// True when the last frame drew the complete cut its view asks for, or all of it that the
+  /// CacheBudget holds (nothing more is coming until the view or the budget changes). A frame of a renderer
   /// the mapper has drawn in that culls its actor (the model wholly outside the view) draws
   /// nothing and needs nothing: converged. Before the mapper first draws, false.
   bool GetConverged() const;

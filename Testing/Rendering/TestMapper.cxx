@@ -434,6 +434,15 @@ TEST(Mapper, NoModelIsConverged)
   EXPECT_GT(errors.Errors, 0);
   EXPECT_TRUE(scene.Mapper->GetConverged());
   EXPECT_EQ(scene.Mapper->GetStatistics().Patches, 0u);
+
+  // A model drawn, then a file that fails: the nodes of the one before are not listed as drawn.
+  scene.Reader->SetFileName(TorusModel().c_str());
+  EXPECT_LT(RenderUntilConverged(scene.Window, scene.Mapper), 400);
+  ASSERT_FALSE(scene.Mapper->GetDrawnNodes().empty());
+  scene.Reader->SetFileName("/nonexistent/model.atp");
+  scene.Window->Render();
+  EXPECT_TRUE(scene.Mapper->GetConverged());
+  EXPECT_TRUE(scene.Mapper->GetDrawnNodes().empty());
 }
 
 // NaN would fail every comparison of the cut; a tolerance out of range is clamped.
