@@ -23,11 +23,13 @@ using FaceBase = CGAL::Triangulation_face_base_with_info_2<int, Kernel,
 using Triangulation = CGAL::Constrained_Delaunay_triangulation_2<Kernel,
   CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>, CGAL::No_constraint_intersection_tag>;
 
-void AppendFan(const std::uint32_t* corners, std::uint32_t count, std::vector<std::uint32_t>& out)
+/// The fan from corner `from`.
+void AppendFan(const std::uint32_t* corners, std::uint32_t count, std::vector<std::uint32_t>& out,
+  std::uint32_t from = 0)
 {
   for (std::uint32_t k = 1; k + 1 < count; ++k)
   {
-    out.insert(out.end(), { corners[0], corners[k], corners[k + 1] });
+    out.insert(out.end(), { corners[from], corners[(from + k) % count], corners[(from + k + 1) % count] });
   }
 }
 
@@ -69,9 +71,11 @@ std::vector<std::array<double, 2>> Project(const std::uint32_t* corners, std::ui
   return projected;
 }
 
-/// Whether the projected polygon turns one way (its normal's) at every corner, or goes straight.
-bool TurnsOneWay(const std::vector<std::array<double, 2>>& p, bool turned)
+/// The corners where the projected polygon turns against its normal (none: it is convex, or
+/// goes straight there).
+std::vector<std::uint32_t> ReflexCorners(const std::vector<std::array<double, 2>>& p, bool turned)
 {
+  std::vector<std::uint32_t> reflex;
   const std::size_t n = p.size();
   for (std::size_t k = 0; k < n; ++k)
   {
@@ -81,10 +85,10 @@ bool TurnsOneWay(const std::vector<std::array<double, 2>>& p, bool turned)
     const double turn = (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0]);
     if (turned ? turn > 0 : turn < 0)
     {
-      return false;
+      reflex.push_back(std::uint32_t(k));
     }
   }
-  return true;
+  return reflex;
 }
 
 /// Numbers every face by the constrained edges crossed on the way from the outside, breadth
@@ -189,7 +193,15 @@ void TriangulatePolygon(const std::uint32_t* corners, std::uint32_t count, const
   {
     bool flat = false, turned = false;
     const std::vector<std::array<double, 2>> points = Project(corners, count, vertices, flat, turned);
-    if (!flat && !TurnsOneWay(points, turned) && AppendTriangulated(corners, points, turned, out))
+    const std::vector<std::uint32_t> reflex = flat ? std::vector<std::uint32_t>() : ReflexCorners(points, turned);
+    if (count == 4 && reflex.size() == 1)
+    {
+      // A dart: the diagonal from its one reflex corner lies inside it. Quads are common, and a
+      // noisy one can turn back a little: no triangulation for them.
+      AppendFan(corners, count, out, reflex[0]);
+      return;
+    }
+    if (!reflex.empty() && AppendTriangulated(corners, points, turned, out))
     {
       return;
     }

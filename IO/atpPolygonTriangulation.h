@@ -16,8 +16,8 @@ namespace atp
 
 /// Appends the triangles of the polygon with `count` (3 or more) corners, vertex indices into
 /// `vertices`, to `out` (three indices each, wound as the polygon). A polygon that turns one
-/// way at every corner, seen along its Newell normal, is fanned from its first corner; any
-/// other is triangulated by a constrained Delaunay triangulation of its corners projected on
+/// way at every corner, seen along its Newell normal, is fanned from its first corner, a quad
+/// that turns back at one corner from that corner; any other is triangulated by a constrained Delaunay triangulation of its corners projected on
 /// the plane across its normal's largest component (CGAL), keeping the triangles inside it.
 /// Where that cannot give count - 2 triangles of its own corners (a polygon that crosses itself,
 /// or repeats a corner) the fan stands: such a polygon has no inside to keep.
