@@ -249,8 +249,16 @@ struct vtkATPMapper::Internals
   vtkNew<vtkMatrix4x4> ModelToDevice, ModelToView;
   vtkNew<vtkMatrix3x3> NormalMatrix;
 
-  /// The renderers it drew in, each with the tag of its StartEvent observer (FrameStarting).
-  std::vector<std::pair<vtkWeakPointer<vtkRenderer>, unsigned long>> Watched;
+  /// A renderer the mapper drew in, watched for the start of its frames (Watch).
+  struct WatchedRenderer
+  {
+    vtkWeakPointer<vtkRenderer> Renderer;
+    unsigned long Tag = 0;
+    bool DrewInLatestFrame = true;
+  };
+  std::vector<WatchedRenderer> Watched;
+  /// What GetStatistics gives while CulledEverywhere: the last frame's, nothing drawn.
+  atp::RenderStatistics CulledStats;
 
   /// No model, or one that cannot be drawn: nothing drawn and nothing coming, so a
   /// render-until-converged loop ends, and no figures of an earlier model linger.
@@ -258,59 +266,58 @@ struct vtkATPMapper::Internals
   {
     Stats = atp::RenderStatistics();
     Stats.Converged = true;
-    ForgetCut();
-  }
-
-  /// No nodes drawn, none missing: GetDrawnNodes must not list what is not on screen.
-  void ForgetCut()
-  {
     Cut.Drawn.clear();
     Cut.Missing.clear();
     Cut.Held.clear();
   }
 
-  /// A renderer starts a frame: it draws nothing of the model unless Render says otherwise.
-  /// VTK does not call Render for an actor it culls (the model wholly outside the view), and
-  /// the figures of the last frame that drew would stand for it: not converged for ever, or
-  /// patches listed as drawn that are no longer on screen.
-  void FrameStarting()
+  /// Whether the latest frame of every renderer it drew in culled the model's actor (the
+  /// model wholly outside their views): VTK then does not call Render, and the figures of the
+  /// last frame that drew would stand for frames that draw nothing, not converged for ever.
+  /// One renderer that still draws it keeps those figures: its cut is what is coming.
+  bool CulledEverywhere()
   {
-    Stats.Patches = 0;
-    Stats.Triangles = 0;
-    Stats.CacheHits = 0;
-    Stats.CacheMisses = 0;
-    Stats.Uploads = 0;
-    Stats.UploadBytes = 0;
-    Stats.CutNodes = 0;
-    Stats.CutSeconds = Stats.UploadSeconds = Stats.DrawSeconds = 0;
-    Stats.Converged = true;
-    ForgetCut();
+    Watched.erase(std::remove_if(Watched.begin(), Watched.end(),
+                    [](const WatchedRenderer& w) { return !w.Renderer; }),
+      Watched.end());
+    return !Watched.empty() &&
+      std::none_of(Watched.begin(), Watched.end(), [](const WatchedRenderer& w) { return w.DrewInLatestFrame; });
   }
 
-  /// Watches the renderer's frames (FrameStarting), once.
+  /// Watches the renderer's frames, once; notes that it draws the model in this one.
   void Watch(vtkRenderer* renderer)
   {
-    Watched.erase(std::remove_if(Watched.begin(), Watched.end(), [](const auto& w) { return !w.first; }),
-      Watched.end());
-    if (std::any_of(Watched.begin(), Watched.end(), [&](const auto& w) { return w.first == renderer; }))
+    for (WatchedRenderer& w : Watched)
     {
-      return;
+      if (w.Renderer == renderer)
+      {
+        w.DrewInLatestFrame = true;
+        return;
+      }
     }
     vtkNew<vtkCallbackCommand> starting;
     starting->SetClientData(this);
-    starting->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
-      static_cast<Internals*>(self)->FrameStarting();
+    starting->SetCallback([](vtkObject* caller, unsigned long, void* self, void*) {
+      auto* renderer = static_cast<vtkRenderer*>(caller);
+      if (renderer->GetSelector())
+      {
+        return; // a picking pass, not a frame
+      }
+      for (WatchedRenderer& w : static_cast<Internals*>(self)->Watched)
+      {
+        w.DrewInLatestFrame = w.DrewInLatestFrame && w.Renderer != renderer;
+      }
     });
-    Watched.emplace_back(renderer, renderer->AddObserver(vtkCommand::StartEvent, starting));
+    Watched.push_back({ renderer, renderer->AddObserver(vtkCommand::StartEvent, starting), true });
   }
 
   ~Internals()
   {
-    for (const auto& [renderer, tag] : Watched)
+    for (const WatchedRenderer& w : Watched)
     {
-      if (renderer)
+      if (w.Renderer)
       {
-        renderer->RemoveObserver(tag);
+        w.Renderer->RemoveObserver(w.Tag);
       }
     }
   }
@@ -359,17 +366,33 @@ int vtkATPMapper::FillInputPortInformation(int, vtkInformation* info)
 
 bool vtkATPMapper::GetConverged() const
 {
-  return this->Impl->Stats.Converged;
+  return this->Impl->CulledEverywhere() || this->Impl->Stats.Converged;
 }
 
 const atp::RenderStatistics& vtkATPMapper::GetStatistics() const
 {
-  return this->Impl->Stats;
+  Internals& in = *this->Impl;
+  if (!in.CulledEverywhere())
+  {
+    return in.Stats;
+  }
+  in.CulledStats = in.Stats;
+  in.CulledStats.Patches = 0;
+  in.CulledStats.Triangles = 0;
+  in.CulledStats.CacheHits = 0;
+  in.CulledStats.CacheMisses = 0;
+  in.CulledStats.Uploads = 0;
+  in.CulledStats.UploadBytes = 0;
+  in.CulledStats.CutNodes = 0;
+  in.CulledStats.CutSeconds = in.CulledStats.UploadSeconds = in.CulledStats.DrawSeconds = 0;
+  in.CulledStats.Converged = true;
+  return in.CulledStats;
 }
 
 const std::vector<unsigned>& vtkATPMapper::GetDrawnNodes() const
 {
-  return this->Impl->Cut.Drawn;
+  static const std::vector<unsigned> none;
+  return this->Impl->CulledEverywhere() ? none : this->Impl->Cut.Drawn;
 }
 
 double* vtkATPMapper::GetBounds()

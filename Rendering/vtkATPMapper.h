@@ -90,9 +90,10 @@ public:
   vtkGetMacro(DecodeThreads, int);
 
   /// True when the last frame drew the complete cut its view asks for, or all of it that the
-  /// CacheBudget holds (nothing more is coming until the view or the budget changes). A frame of a renderer
-  /// the mapper has drawn in that culls its actor (the model wholly outside the view) draws
-  /// nothing and needs nothing: converged. Before the mapper first draws, false.
+  /// CacheBudget holds (nothing more is coming until the view or the budget changes). When the
+  /// latest frame of every renderer the mapper has drawn in culled its actor (the model wholly
+  /// outside their views), nothing is drawn and nothing needed: converged, and the figures and
+  /// drawn nodes say nothing was drawn. Before the mapper first draws, false.
   bool GetConverged() const;
   /// What the last frame did.
   const atp::RenderStatistics& GetStatistics() const;

@@ -180,6 +180,34 @@ TEST(Mapper, AFrameThatCullsTheModelIsConvergedWithNothingDrawn)
   EXPECT_FALSE(scene.Mapper->GetDrawnNodes().empty());
 }
 
+TEST(Mapper, ARendererThatCullsTheModelLeavesAnotherOnesCutComing)
+{
+  // Two views of one window, the right one looking away: the left one's cut is what counts.
+  AtpScene scene;
+  scene.Mapper->SetUploadBudget(64 << 10);
+  vtkRenderer* left = FirstRenderer(scene.Window);
+  left->SetViewport(0, 0, 0.5, 1);
+  vtkNew<vtkRenderer> right;
+  right->SetViewport(0.5, 0, 1, 1);
+  right->AddActor(scene.Actor);
+  scene.Window->AddRenderer(right);
+  AimCamera(left, 30, 40, 2.0);
+  AimCamera(right, 30, 40, 2.0);
+  scene.Window->Render();
+  right->GetActiveCamera()->Yaw(180);
+  scene.Window->Render();
+  EXPECT_FALSE(scene.Mapper->GetConverged()) << "the left view's cut is still coming";
+  EXPECT_FALSE(scene.Mapper->GetDrawnNodes().empty());
+  EXPECT_LT(RenderUntilConverged(scene.Window, scene.Mapper, 2000), 2000);
+  EXPECT_GT(scene.Mapper->GetStatistics().Patches, std::size_t(atp::RootCount));
+  // Both looking away: nothing drawn, nothing coming.
+  left->GetActiveCamera()->Yaw(180);
+  scene.Window->Render();
+  EXPECT_TRUE(scene.Mapper->GetConverged());
+  EXPECT_TRUE(scene.Mapper->GetDrawnNodes().empty());
+  EXPECT_EQ(scene.Mapper->GetStatistics().Patches, 0u);
+}
+
 /// The nodes drawn in a view that culls nothing must form a crack-free surface.
 void ExpectCrackFree(const std::vector<unsigned>& drawn)
 {
