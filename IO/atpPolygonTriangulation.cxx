@@ -33,49 +33,11 @@ void AppendFan(const std::uint32_t* corners, std::uint32_t count, std::vector<st
   }
 }
 
-/// The corners projected on the plane across the normal's largest component, turned so that a
-/// polygon wound counterclockwise about its normal stays so; `turned` is set when the normal
-/// points against that axis (the projection then winds the other way).
-std::vector<std::array<double, 2>> Project(const std::uint32_t* corners, std::uint32_t count,
-  const VertexView& vertices, bool& flat, bool& turned)
-{
-  std::vector<std::array<double, 3>> points(count);
-  for (std::uint32_t k = 0; k < count; ++k)
-  {
-    float p[3];
-    vertices.Get(corners[k], p);
-    points[k] = { { p[0], p[1], p[2] } };
-  }
-  double normal[3] = { 0, 0, 0 }; // Newell's: twice the projected areas
-  for (std::uint32_t k = 0; k < count; ++k)
-  {
-    const auto& a = points[k];
-    const auto& b = points[(k + 1) % count];
-    normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
-    normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
-    normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
-  }
-  int axis = 0;
-  for (int a = 1; a < 3; ++a)
-  {
-    axis = std::fabs(normal[a]) > std::fabs(normal[axis]) ? a : axis;
-  }
-  flat = !(normal[axis] != 0); // no area at all (or NaN)
-  turned = normal[axis] < 0;
-  const int u = (axis + 1) % 3, v = (axis + 2) % 3; // (x, y) for z, (y, z) for x, (z, x) for y
-  std::vector<std::array<double, 2>> projected(count);
-  for (std::uint32_t k = 0; k < count; ++k)
-  {
-    projected[k] = { { points[k][std::size_t(u)], points[k][std::size_t(v)] } };
-  }
-  return projected;
-}
-
 /// The corners where the projected polygon turns against its normal (none: it is convex, or
 /// goes straight there).
-std::vector<std::uint32_t> ReflexCorners(const std::vector<std::array<double, 2>>& p, bool turned)
+void FindReflexCorners(const std::vector<std::array<double, 2>>& p, bool turned, std::vector<std::uint32_t>& reflex)
 {
-  std::vector<std::uint32_t> reflex;
+  reflex.clear();
   const std::size_t n = p.size();
   for (std::size_t k = 0; k < n; ++k)
   {
@@ -88,7 +50,6 @@ std::vector<std::uint32_t> ReflexCorners(const std::vector<std::array<double, 2>
       reflex.push_back(std::uint32_t(k));
     }
   }
-  return reflex;
 }
 
 /// Numbers every face by the constrained edges crossed on the way from the outside, breadth
@@ -186,27 +147,78 @@ bool AppendTriangulated(const std::uint32_t* corners, const std::vector<std::arr
 }
 } // namespace
 
-void TriangulatePolygon(const std::uint32_t* corners, std::uint32_t count, const VertexView& vertices,
-  std::vector<std::uint32_t>& out)
+void PolygonTriangulator::Triangulate(const std::uint32_t* corners, std::uint32_t count,
+  const VertexView& vertices, std::vector<std::uint32_t>& out)
 {
-  if (count > 3)
+  // Corners that repeat the one before (an index or a position written twice, as exporters do)
+  // turn nowhere and would hide a reflex corner beside them: the polygon goes without them.
+  Corners.clear();
+  Points.clear();
+  for (std::uint32_t k = 0; k < count; ++k)
   {
-    bool flat = false, turned = false;
-    const std::vector<std::array<double, 2>> points = Project(corners, count, vertices, flat, turned);
-    const std::vector<std::uint32_t> reflex = flat ? std::vector<std::uint32_t>() : ReflexCorners(points, turned);
-    if (count == 4 && reflex.size() == 1)
+    float p[3];
+    vertices.Get(corners[k], p);
+    const std::array<double, 3> point{ { p[0], p[1], p[2] } };
+    if (Points.empty() || point != Points.back())
     {
-      // A dart: the diagonal from its one reflex corner lies inside it. Quads are common, and a
-      // noisy one can turn back a little: no triangulation for them.
-      AppendFan(corners, count, out, reflex[0]);
-      return;
-    }
-    if (!reflex.empty() && AppendTriangulated(corners, points, turned, out))
-    {
-      return;
+      Corners.push_back(corners[k]);
+      Points.push_back(point);
     }
   }
-  AppendFan(corners, count, out);
+  while (Points.size() > 1 && Points.back() == Points.front())
+  {
+    Points.pop_back();
+    Corners.pop_back();
+  }
+  const std::uint32_t kept = std::uint32_t(Corners.size());
+  if (kept < 3)
+  {
+    AppendFan(corners, count, out); // no area: its triangles are dropped as degenerate
+    return;
+  }
+  if (kept > 3)
+  {
+    double normal[3] = { 0, 0, 0 }; // Newell's: twice the projected areas
+    for (std::uint32_t k = 0; k < kept; ++k)
+    {
+      const auto& a = Points[k];
+      const auto& b = Points[(k + 1) % kept];
+      normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
+      normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
+      normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+    {
+      axis = std::fabs(normal[a]) > std::fabs(normal[axis]) ? a : axis;
+    }
+    // Projected on the plane across the normal's largest component, (x, y) for z, (y, z) for x,
+    // (z, x) for y: counterclockwise about the normal stays so unless the normal points against
+    // that axis (turned).
+    const bool turned = normal[axis] < 0;
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    Projected.resize(kept);
+    for (std::uint32_t k = 0; k < kept; ++k)
+    {
+      Projected[k] = { { Points[k][std::size_t(u)], Points[k][std::size_t(v)] } };
+    }
+    if (normal[axis] != 0) // an area to keep
+    {
+      FindReflexCorners(Projected, turned, Reflex);
+      if (kept == 4 && Reflex.size() == 1)
+      {
+        // A dart: the diagonal from its one reflex corner lies inside it. Quads are common, and
+        // a noisy one can turn back a little: no triangulation for them.
+        AppendFan(Corners.data(), kept, out, Reflex[0]);
+        return;
+      }
+      if (!Reflex.empty() && AppendTriangulated(Corners.data(), Projected, turned, out))
+      {
+        return;
+      }
+    }
+  }
+  AppendFan(Corners.data(), kept, out);
 }
 
 } // namespace atp

@@ -1,6 +1,6 @@
 // The triangles of a batch of polygons, one per call, so a caller can stop anywhere (a full
-// output buffer) and go on later: a triangle as it is, a larger polygon as TriangulatePolygon
-// makes it (a fan where that is right).
+// output buffer) and go on later: a triangle as it is, a larger polygon as a
+// PolygonTriangulator makes it (a fan where that is right).
 #ifndef atpTriangleCursor_h
 #define atpTriangleCursor_h
 
@@ -55,7 +55,7 @@ public:
       this->Taken = 0;
       if (size > 3)
       {
-        TriangulatePolygon(corners, size, this->Vertices, this->Pending);
+        this->Triangulator.Triangulate(corners, size, this->Vertices, this->Pending);
       }
     }
     triangle[0] = this->Pending[this->Taken];
@@ -73,6 +73,7 @@ private:
   /// The triangles of the current polygon of more than three corners, three indices each.
   std::vector<std::uint32_t> Pending;
   std::size_t Taken = 0;
+  PolygonTriangulator Triangulator;
 };
 
 } // namespace atp
