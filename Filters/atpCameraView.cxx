@@ -24,7 +24,8 @@ std::string CameraProblem(vtkCamera* camera)
   {
     return "its focal point is not finite";
   }
-  if (camera->GetParallelProjection() && !(camera->GetParallelScale() > 0))
+  if (camera->GetParallelProjection() && !camera->GetUseExplicitProjectionTransformMatrix() &&
+    !(camera->GetParallelScale() > 0))
   {
     return "its parallel scale is not positive";
   }

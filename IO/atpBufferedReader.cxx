@@ -138,7 +138,7 @@ bool BufferedReader::NextLine(std::string_view& line)
     this->AfterCarriageReturn = false;
     if (restOfLineEnd)
     {
-      ++this->Next; // the "\n" of a "\r\n" that NextToken read up to
+      ++this->Next; // the "\n" of a "\r\n" whose "\r" ended the buffer and the line before
       continue;
     }
     const unsigned char* start = this->Buffer.data() + this->Next;
@@ -149,9 +149,10 @@ bool BufferedReader::NextLine(std::string_view& line)
     // Read on when the line may go on past the buffer, or when a "\r" is its last byte: whether a
     // "\n" follows decides where the next line starts.
     const bool lastIsCarriage = carriage && carriage + 1 == start + available;
-    if (!this->AtEndOfFile && (lastIsCarriage || (!carriage && !newline)))
+    const bool full = available == this->Buffer.size();
+    if (!this->AtEndOfFile && ((lastIsCarriage && !full) || (!carriage && !newline)))
     {
-      if (available == this->Buffer.size())
+      if (full)
       {
         this->FailTooLong("line");
       }
@@ -164,6 +165,9 @@ bool BufferedReader::NextLine(std::string_view& line)
       length = static_cast<std::size_t>(carriage - start);
       const bool crlf = length + 1 < available && carriage[1] == '\n';
       consumed = length + (crlf ? 2 : 1);
+      // A "\r" that ends a full buffer ends its line either way: a "\n" after it, read with the
+      // next line, belongs to this one.
+      this->AfterCarriageReturn = lastIsCarriage;
     }
     this->Next += consumed;
     line = std::string_view(reinterpret_cast<const char*>(start), length);

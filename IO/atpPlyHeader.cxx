@@ -69,8 +69,11 @@ PlyHeader ReadPlyHeader(const InputFile& file)
 
   // Lines end with "\n" or "\r\n" (NextWord reads the "\r" as a blank), or with a lone "\r"
   // (classic Mac OS) when the first one does: a binary body may start with any byte.
-  const char lineEnd =
-    text.compare(0, 4, "ply\r") == 0 && text.compare(0, 5, "ply\r\n") != 0 ? '\r' : '\n';
+  const std::size_t firstEnd = text.find_first_of("\r\n");
+  const char lineEnd = firstEnd != std::string::npos && text[firstEnd] == '\r' &&
+      (firstEnd + 1 == text.size() || text[firstEnd + 1] != '\n')
+    ? '\r'
+    : '\n';
   std::size_t lineStart = 0;
   bool formatSeen = false;
   for (std::uint64_t line = 1;; ++line)

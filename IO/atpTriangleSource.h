@@ -84,8 +84,9 @@ class VTKATPIO_EXPORT TriangleSource
 public:
   virtual ~TriangleSource();
 
-  /// Bounds of all vertices; known as soon as the source is open (the partitioner needs the
-  /// box before the first triangle).
+  /// Bounds of the vertices the triangles use (a point no face uses costs the model no
+  /// precision); known as soon as the source is open (the partitioner needs the box before
+  /// the first triangle).
   virtual Box Bounds() const = 0;
 
   /// Number of triangles expected, for progress reporting (an estimate: polygons and dropped

@@ -16,6 +16,7 @@
 #include "vtkFeatureEdges.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
+#include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
@@ -211,6 +212,19 @@ TEST(ExtractCut, RefusesACameraWithNoView)
       camera->SetParallelScale(0);
     },
   };
+  // A parallel camera with a projection of its own does not use its parallel scale.
+  camera->ParallelProjectionOn();
+  camera->SetParallelScale(0);
+  vtkNew<vtkMatrix4x4> projection;
+  projection->SetElement(0, 0, 0.5);
+  projection->SetElement(1, 1, 0.5);
+  projection->SetElement(2, 2, -0.1);
+  camera->SetExplicitProjectionTransformMatrix(projection);
+  camera->UseExplicitProjectionTransformMatrixOn();
+  extract->Update();
+  EXPECT_GT(extract->GetOutput()->GetNumberOfPolys(), 0);
+  EXPECT_EQ(errors.Errors, 0);
+  camera->UseExplicitProjectionTransformMatrixOff();
   for (const auto& breakCamera : breakers)
   {
     camera->SetPosition(0, 0, 10);

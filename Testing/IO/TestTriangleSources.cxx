@@ -1,6 +1,8 @@
 // OpenTriangleSource on every input format: the triangles and boundary flags it yields, what it
 // drops, and a clear InputError (never a crash) for every kind of bad input. Inputs are written
 // into a temporary directory by the tests themselves.
+#include "atpBufferedReader.h"
+#include "atpInputFile.h"
 #include "atpNormalEncoding.h"
 #include "atpPolyDataTriangleSource.h"
 #include "atpTriangleSource.h"
@@ -684,6 +686,59 @@ TEST_F(TriangleSources, TextLinesEndWithLineFeedsCarriageReturnsOrBoth)
   ASSERT_EQ(binary[body], '\x0A');
   EXPECT_EQ(Soup(this->Read(this->Write("cr-binary.ply", WithLineEnds(binary, "\r", body)))),
     ExpectedSoup(lineFeedFirst));
+  // The same with a blank after "ply": its line still ends with the "\r".
+  EXPECT_EQ(Soup(this->Read(this->Write("cr-blank.ply", "ply " + WithLineEnds(binary, "\r", body).substr(3)))),
+    ExpectedSoup(lineFeedFirst));
+}
+
+TEST_F(TriangleSources, LinesEndAnyWayWhereverTheBufferEnds)
+{
+  // Lines, tokens and their line numbers, with a buffer so small that its end falls at every
+  // place of the text in turn: in a "\r\n", right after a lone "\r", or with a "\r" last in a
+  // full buffer (refused as a line too long, though the line had ended).
+  const std::string text = "ab\r\ncd\ref\ngh\r\r\nij\r";
+  const std::vector<std::string> lines = { "ab", "cd", "ef", "gh", "", "ij" };
+  const std::vector<std::pair<std::string, std::uint64_t>> tokens = { { "ab", 1 }, { "cd", 2 },
+    { "ef", 3 }, { "gh", 4 }, { "ij", 6 } };
+  const atp::InputFile file(this->Write("lines.txt", text));
+  for (std::size_t capacity = 3; capacity <= text.size() + 1; ++capacity)
+  {
+    SCOPED_TRACE("capacity " + std::to_string(capacity));
+    atp::BufferedReader reader(file, 0, 1, capacity);
+    std::vector<std::string> read;
+    std::vector<std::uint64_t> numbers;
+    std::string_view line;
+    while (reader.NextLine(line))
+    {
+      read.emplace_back(line);
+      numbers.push_back(reader.Line());
+    }
+    EXPECT_EQ(read, lines);
+    EXPECT_EQ(numbers, (std::vector<std::uint64_t>{ 1, 2, 3, 4, 5, 6 }));
+    reader.Seek(0);
+    std::vector<std::pair<std::string, std::uint64_t>> words;
+    std::string_view token;
+    while (reader.NextToken(token))
+    {
+      words.emplace_back(std::string(token), reader.Line());
+    }
+    EXPECT_EQ(words, tokens);
+  }
+  const atp::InputFile full(this->Write("full.txt", "aaaaaaa\rbb\n"));
+  atp::BufferedReader reader(full, 0, 1, 8);
+  std::string_view line;
+  ASSERT_TRUE(reader.NextLine(line));
+  EXPECT_EQ(line, "aaaaaaa");
+  ASSERT_TRUE(reader.NextLine(line));
+  EXPECT_EQ(line, "bb");
+  EXPECT_EQ(reader.Line(), 2u);
+  const atp::InputFile crlf(this->Write("crlf.txt", "aaaaaaa\r\nbb\n"));
+  atp::BufferedReader split(crlf, 0, 1, 8);
+  ASSERT_TRUE(split.NextLine(line));
+  EXPECT_EQ(line, "aaaaaaa");
+  ASSERT_TRUE(split.NextLine(line));
+  EXPECT_EQ(line, "bb") << "the \n of a \r\n split by the buffer is no line of its own";
+  EXPECT_FALSE(split.NextLine(line));
 }
 
 TEST_F(TriangleSources, AsciiPlyRecordsStandOneToALine)
