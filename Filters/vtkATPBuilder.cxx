@@ -130,6 +130,7 @@ int vtkATPBuilder::RequestData(vtkInformation*, vtkInformationVector** inputs, v
 {
   this->ErrorMessage.clear();
   this->WarningMessage.clear();
+  this->ExpectedTriangles = 0; // until this build's input is open
   // Figures go to Last only once the build has succeeded: they are the last successful one's.
   Results running;
   const std::string scratch = this->ScratchDirectory ? this->ScratchDirectory : "";

@@ -355,6 +355,16 @@ TEST(Builder, ReportsErrorsWithoutThrowing)
   EXPECT_NE(std::string(builder->GetErrorMessage()).find("/nonexistent/mesh.ply"),
     std::string::npos);
 
+  // What a build expected to read is not left over from the one before.
+  builder->SetInputFileName(ATP_DATA_DIR "/bumpy-torus.ply");
+  const TemporaryPath built("built.atp");
+  builder->SetFileName(built.c_str());
+  ASSERT_EQ(builder->Build(), 1) << builder->GetErrorMessage();
+  EXPECT_GT(builder->GetExpectedTriangles(), 0u);
+  builder->SetInputFileName("/nonexistent/mesh.ply");
+  EXPECT_EQ(builder->Build(), 0);
+  EXPECT_EQ(builder->GetExpectedTriangles(), 0u);
+
   vtkNew<vtkATPBuilder> empty;
   empty->AddObserver(vtkCommand::ErrorEvent, quiet);
   vtkNew<vtkPolyData> nothing;
