@@ -10,6 +10,46 @@
 
 namespace atp
 {
+namespace
+{
+/// The largest singular value of the 3 x 3 matrix `l` (row-major): the square root of the
+/// largest eigenvalue of l^T l, in closed form (symmetric 3 x 3, trigonometric).
+double LargestStretch(const double l[9])
+{
+  double a[3][3];
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      a[i][j] = l[i] * l[j] + l[3 + i] * l[3 + j] + l[6 + i] * l[6 + j];
+    }
+  }
+  const double offDiagonal = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
+  double largest = std::max({ a[0][0], a[1][1], a[2][2] });
+  if (offDiagonal > 0)
+  {
+    const double q = (a[0][0] + a[1][1] + a[2][2]) / 3;
+    const double p = std::sqrt(((a[0][0] - q) * (a[0][0] - q) + (a[1][1] - q) * (a[1][1] - q) +
+                                 (a[2][2] - q) * (a[2][2] - q) + 2 * offDiagonal) / 6);
+    double b[3][3];
+    for (int i = 0; i < 3; ++i)
+    {
+      for (int j = 0; j < 3; ++j)
+      {
+        b[i][j] = (a[i][j] - (i == j ? q : 0)) / p;
+      }
+    }
+    const double halfDeterminant = (b[0][0] * (b[1][1] * b[2][2] - b[1][2] * b[2][1]) -
+                                     b[0][1] * (b[1][0] * b[2][2] - b[1][2] * b[2][0]) +
+                                     b[0][2] * (b[1][0] * b[2][1] - b[1][1] * b[2][0])) / 2;
+    const double angle = std::acos(std::clamp(halfDeterminant, -1.0, 1.0)) / 3;
+    largest = std::max(largest, q + 2 * p * std::cos(angle));
+  }
+  // Rounding may fall short of the exact value by a few ulps: the measure must not.
+  return std::sqrt(largest) * (1 + 1e-12);
+}
+} // namespace
+
 
 std::string CameraProblem(vtkCamera* camera)
 {
@@ -72,18 +112,30 @@ ViewPoint ViewFromCamera(vtkCamera* camera, int width, int height, vtkMatrix4x4*
   view.ViewportHeight = std::max(height, 1);
   view.TolerancePixels = tolerancePixels;
   view.BackfaceCulling = backfaceCulling;
+  vtkMatrix4x4* projection = camera->GetProjectionTransformMatrix(aspect, -1, 1);
   // Vertical scale of the projection: 1 / tan(half view angle), or 1 / parallel scale.
-  const double yScale = camera->GetProjectionTransformMatrix(aspect, -1, 1)->GetElement(1, 1);
-  // Uniform part of the actor's scale, to express the parallel scale in model units.
-  const double modelScale = modelToWorld ? std::cbrt(std::abs(modelToWorld->Determinant())) : 1.0;
+  const double yScale = projection->GetElement(1, 1);
+  if (modelToWorld)
+  {
+    for (int row = 0; row < 3; ++row)
+    {
+      for (int column = 0; column < 3; ++column)
+      {
+        view.Linear[3 * row + column] = modelToWorld->GetElement(row, column);
+      }
+    }
+    view.Stretch = LargestStretch(view.Linear);
+  }
   double position[4] = { 0, 0, 0, 1 };
   camera->GetPosition(position);
   worldToModel->MultiplyPoint(position, position);
   std::copy(position, position + 3, view.Eye);
-  if (camera->GetParallelProjection())
+  // Orthographic when the projection does not divide by depth: a parallel camera, or an
+  // explicit projection matrix without perspective.
+  if (projection->GetElement(3, 2) == 0)
   {
     view.Parallel = true;
-    view.ParallelScale = 1 / (yScale * modelScale);
+    view.ParallelScale = 1 / yScale; // in the camera's units, as errors are measured
     double direction[4] = { 0, 0, 0, 0 };
     camera->GetDirectionOfProjection(direction);
     worldToModel->MultiplyPoint(direction, direction);

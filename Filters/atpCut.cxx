@@ -24,16 +24,23 @@ double PixelsPerUnit(const ViewPoint& view)
 /// the sphere, so nodes around the viewer always refine.
 double ScreenError(const ModelNode& node, const ViewPoint& view, double factor)
 {
+  // In the camera's units: an error grows by at most Stretch, and so does the sphere's radius.
+  const double error = view.Stretch * node.SaturatedError;
   if (view.Parallel)
   {
-    return factor * node.SaturatedError;
+    return factor * error;
   }
   const float* s = node.SaturatedSphere;
-  const double distance = std::sqrt((s[0] - view.Eye[0]) * (s[0] - view.Eye[0]) +
-                            (s[1] - view.Eye[1]) * (s[1] - view.Eye[1]) +
-                            (s[2] - view.Eye[2]) * (s[2] - view.Eye[2])) - s[3];
-  return distance <= 0 ? std::numeric_limits<double>::infinity()
-                       : factor * node.SaturatedError / distance;
+  const double offset[3] = { s[0] - view.Eye[0], s[1] - view.Eye[1], s[2] - view.Eye[2] };
+  const double* l = view.Linear;
+  double squared = 0;
+  for (int row = 0; row < 3; ++row)
+  {
+    const double c = l[3 * row] * offset[0] + l[3 * row + 1] * offset[1] + l[3 * row + 2] * offset[2];
+    squared += c * c;
+  }
+  const double distance = std::sqrt(squared) - view.Stretch * s[3];
+  return distance <= 0 ? std::numeric_limits<double>::infinity() : factor * error / distance;
 }
 } // namespace
 
@@ -43,7 +50,8 @@ bool SameView(const ViewPoint& a, const ViewPoint& b)
     a.ViewportHeight == b.ViewportHeight && a.ViewAngleDegrees == b.ViewAngleDegrees &&
     a.Parallel == b.Parallel && a.ParallelScale == b.ParallelScale &&
     std::equal(a.Direction, a.Direction + 3, b.Direction) && a.PlaneCount == b.PlaneCount &&
-    a.BackfaceCulling == b.BackfaceCulling &&
+    a.BackfaceCulling == b.BackfaceCulling && a.Stretch == b.Stretch &&
+    std::equal(a.Linear, a.Linear + 9, b.Linear) &&
     std::equal(&a.Planes[0][0], &a.Planes[0][0] + 4 * a.PlaneCount, &b.Planes[0][0]);
 }
 

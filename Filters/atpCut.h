@@ -38,6 +38,14 @@ struct ViewPoint
   /// Drop patches (and branches) whose every normal faces away from the eye. Only for closed,
   /// one-sided surfaces.
   bool BackfaceCulling = false;
+  /// The view is in the model's coordinates, which the actor's matrix may stretch unevenly
+  /// (a scale of 1, 1, 0.1; a shear): Linear, row-major, is that matrix's linear part (model
+  /// vectors to the camera's units), and Stretch the most it lengthens a vector (its largest
+  /// singular value). Errors and distances are measured in the camera's units: an error across
+  /// the squashed axis, seen from far along it, is not its model-space size over a model-space
+  /// distance.
+  double Linear[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  double Stretch = 1;
 };
 
 /// Whether two views ask for the same cut (same eye, planes, projection and tolerance).
