@@ -254,11 +254,20 @@ struct vtkATPMapper::Internals
   {
     vtkWeakPointer<vtkRenderer> Renderer;
     unsigned long Tag = 0;
+    /// When its latest two frames started, counted in Starts.
+    std::uint64_t LatestStart = 0, PreviousStart = 0;
+    /// VTK culls an actor whose bounds lie wholly outside the view, and calls no Render.
     bool DrewInLatestFrame = true;
+    /// What its latest drawn frame missed and is coming (the fetcher decodes for every
+    /// renderer), of the model of that generation.
+    std::vector<std::uint32_t> Wanted;
+    std::uint64_t ModelGeneration = 0;
   };
   std::vector<WatchedRenderer> Watched;
-  /// What GetStatistics gives while CulledEverywhere: the last frame's, nothing drawn.
-  atp::RenderStatistics CulledStats;
+  std::uint64_t Starts = 0; ///< frames started by the renderers watched
+  /// What GetStatistics gives: the last drawn frame's, or nothing drawn (AllCulled), and
+  /// converged as Converged says.
+  atp::RenderStatistics Reported;
 
   /// No model, or one that cannot be drawn: nothing drawn and nothing coming, so a
   /// render-until-converged loop ends, and no figures of an earlier model linger.
@@ -271,28 +280,63 @@ struct vtkATPMapper::Internals
     Cut.Held.clear();
   }
 
-  /// Whether the latest frame of every renderer it drew in culled the model's actor (the
-  /// model wholly outside their views): VTK then does not call Render, and the figures of the
-  /// last frame that drew would stand for frames that draw nothing, not converged for ever.
-  /// One renderer that still draws it keeps those figures: its cut is what is coming.
-  bool CulledEverywhere()
+  /// The renderers of the latest round of frames: those that started one since the renderer
+  /// that started last had started its frame before. A loop that renders some windows over and
+  /// over finds exactly the renderers those windows draw; one no longer rendered drops out.
+  template <typename Visit>
+  void ForEachCurrent(Visit visit)
   {
     Watched.erase(std::remove_if(Watched.begin(), Watched.end(),
                     [](const WatchedRenderer& w) { return !w.Renderer; }),
       Watched.end());
-    return !Watched.empty() &&
-      std::none_of(Watched.begin(), Watched.end(), [](const WatchedRenderer& w) { return w.DrewInLatestFrame; });
+    if (Watched.empty())
+    {
+      return;
+    }
+    const auto latest = std::max_element(Watched.begin(), Watched.end(),
+      [](const WatchedRenderer& a, const WatchedRenderer& b) { return a.LatestStart < b.LatestStart; });
+    for (WatchedRenderer& w : Watched)
+    {
+      if (w.LatestStart > latest->PreviousStart)
+      {
+        visit(w);
+      }
+    }
+  }
+
+  /// Whether every renderer of the latest round culled the model's actor: nothing is on
+  /// screen, and the figures of the last frame that drew must not say otherwise.
+  bool AllCulled()
+  {
+    bool culled = !Watched.empty();
+    ForEachCurrent([&](const WatchedRenderer& w) { culled = culled && !w.DrewInLatestFrame; });
+    return culled;
+  }
+
+  /// Whether every renderer of the latest round has drawn all its cut asks for, or culled the
+  /// model: one frame's figures say it for one renderer, and a loop over a window of two views
+  /// ended while the other was still coarse.
+  bool Converged()
+  {
+    if (Watched.empty())
+    {
+      return Stats.Converged;
+    }
+    bool converged = true;
+    ForEachCurrent(
+      [&](const WatchedRenderer& w) { converged = converged && !(w.DrewInLatestFrame && !w.Wanted.empty()); });
+    return converged;
   }
 
   /// Watches the renderer's frames, once; notes that it draws the model in this one.
-  void Watch(vtkRenderer* renderer)
+  WatchedRenderer& Watch(vtkRenderer* renderer)
   {
     for (WatchedRenderer& w : Watched)
     {
       if (w.Renderer == renderer)
       {
         w.DrewInLatestFrame = true;
-        return;
+        return w;
       }
     }
     vtkNew<vtkCallbackCommand> starting;
@@ -303,12 +347,24 @@ struct vtkATPMapper::Internals
       {
         return; // a picking pass, not a frame
       }
-      for (WatchedRenderer& w : static_cast<Internals*>(self)->Watched)
+      Internals& in = *static_cast<Internals*>(self);
+      ++in.Starts;
+      for (WatchedRenderer& w : in.Watched)
       {
-        w.DrewInLatestFrame = w.DrewInLatestFrame && w.Renderer != renderer;
+        if (w.Renderer == renderer)
+        {
+          w.PreviousStart = w.LatestStart;
+          w.LatestStart = in.Starts;
+          w.DrewInLatestFrame = false;
+        }
       }
     });
-    Watched.push_back({ renderer, renderer->AddObserver(vtkCommand::StartEvent, starting), true });
+    WatchedRenderer w;
+    w.Renderer = renderer;
+    w.Tag = renderer->AddObserver(vtkCommand::StartEvent, starting);
+    w.LatestStart = ++Starts; // this frame started before the watch
+    Watched.push_back(std::move(w));
+    return Watched.back();
   }
 
   ~Internals()
@@ -366,33 +422,32 @@ int vtkATPMapper::FillInputPortInformation(int, vtkInformation* info)
 
 bool vtkATPMapper::GetConverged() const
 {
-  return this->Impl->CulledEverywhere() || this->Impl->Stats.Converged;
+  return this->Impl->Converged();
 }
 
 const atp::RenderStatistics& vtkATPMapper::GetStatistics() const
 {
   Internals& in = *this->Impl;
-  if (!in.CulledEverywhere())
+  in.Reported = in.Stats;
+  if (in.AllCulled())
   {
-    return in.Stats;
+    in.Reported.Patches = 0;
+    in.Reported.Triangles = 0;
+    in.Reported.CacheHits = 0;
+    in.Reported.CacheMisses = 0;
+    in.Reported.Uploads = 0;
+    in.Reported.UploadBytes = 0;
+    in.Reported.CutNodes = 0;
+    in.Reported.CutSeconds = in.Reported.UploadSeconds = in.Reported.DrawSeconds = 0;
   }
-  in.CulledStats = in.Stats;
-  in.CulledStats.Patches = 0;
-  in.CulledStats.Triangles = 0;
-  in.CulledStats.CacheHits = 0;
-  in.CulledStats.CacheMisses = 0;
-  in.CulledStats.Uploads = 0;
-  in.CulledStats.UploadBytes = 0;
-  in.CulledStats.CutNodes = 0;
-  in.CulledStats.CutSeconds = in.CulledStats.UploadSeconds = in.CulledStats.DrawSeconds = 0;
-  in.CulledStats.Converged = true;
-  return in.CulledStats;
+  in.Reported.Converged = in.Converged();
+  return in.Reported;
 }
 
 const std::vector<unsigned>& vtkATPMapper::GetDrawnNodes() const
 {
   static const std::vector<unsigned> none;
-  return this->Impl->CulledEverywhere() ? none : this->Impl->Cut.Drawn;
+  return this->Impl->AllCulled() ? none : this->Impl->Cut.Drawn;
 }
 
 double* vtkATPMapper::GetBounds()
@@ -433,7 +488,10 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
 {
   Internals& in = *this->Impl;
   const Clock::time_point frameStart = Clock::now();
-  in.Watch(renderer);
+  // This renderer's wish list, filled below when the frame gets that far (an early return
+  // draws nothing and needs nothing).
+  Internals::WatchedRenderer& watched = in.Watch(renderer);
+  watched.Wanted.clear();
   if (this->GetNumberOfInputConnections(0) > 0)
   {
     this->GetInputAlgorithm()->Update();
@@ -618,14 +676,17 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
       cache.WantedFrame[node] = stats.Frame;
     }
   }
-  if (in.Windows.size() == 1)
+  watched.Wanted = cache.Wanted;
+  watched.ModelGeneration = in.ModelGeneration;
+  if (in.Watched.size() == 1)
   {
     in.Fetcher->Request(cache.Wanted);
   }
   else
   {
-    // This window's first, then what the others asked for last and have not been handed yet,
-    // each node once.
+    // This renderer's first, then what the others asked for in their latest frames and has not
+    // been handed to their windows yet, each node once: the fetcher's queue is replaced by
+    // every request, and views of one window, or several windows, take turns.
     in.Requests = cache.Wanted;
     in.Requested.assign(model->NodeCount(), 0);
     for (const std::uint32_t node : cache.Wanted)
@@ -633,27 +694,25 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
       in.Requested[node] = 1;
     }
     // A window that has not drawn since the model changed holds another model's nodes.
-    const auto current = [&](const WindowCache& c) {
-      return &c != &cache && c.ModelGeneration == in.ModelGeneration;
-    };
     for (const auto& [other, otherCache] : in.Windows)
     {
-      for (std::size_t i = 0; current(*otherCache) && i < otherCache->Pending.size(); ++i)
+      for (std::size_t i = 0; otherCache->ModelGeneration == in.ModelGeneration && i < otherCache->Pending.size(); ++i)
       {
         in.Requested[otherCache->Pending[i].Node] = 1;
       }
     }
-    for (const auto& [other, otherCache] : in.Windows)
+    for (const auto& w : in.Watched)
     {
-      if (current(*otherCache))
+      if (w.ModelGeneration != in.ModelGeneration || !w.DrewInLatestFrame)
       {
-        for (const std::uint32_t node : otherCache->Wanted)
+        continue;
+      }
+      for (const std::uint32_t node : w.Wanted)
+      {
+        if (!in.Requested[node])
         {
-          if (!in.Requested[node])
-          {
-            in.Requested[node] = 1;
-            in.Requests.push_back(node);
-          }
+          in.Requested[node] = 1;
+          in.Requests.push_back(node);
         }
       }
     }

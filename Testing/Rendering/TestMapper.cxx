@@ -271,6 +271,29 @@ TEST(Mapper, ARendererThatCullsTheModelLeavesAnotherOnesCutComing)
   EXPECT_EQ(scene.Mapper->GetStatistics().Patches, 0u);
 }
 
+TEST(Mapper, TwoViewsConvergeTogether)
+{
+  // A window of two views, a close one and a far one: converged said only whether the last
+  // view drawn was, and a render-until-converged loop ended while the close one was coarse.
+  AtpScene scene;
+  scene.Mapper->SetUploadBudget(64 << 10);
+  vtkRenderer* close = FirstRenderer(scene.Window);
+  close->SetViewport(0, 0, 0.5, 1);
+  vtkNew<vtkRenderer> far;
+  far->SetViewport(0.5, 0, 1, 1);
+  far->AddActor(scene.Actor);
+  scene.Window->AddRenderer(far);
+  AimCamera(close, 100, 50, 3.0);
+  AimCamera(far, 30, 40, 0.3);
+  EXPECT_LT(RenderUntilConverged(scene.Window, scene.Mapper, 2000), 2000);
+  const vtkSmartPointer<vtkImageData> converged = atp::CaptureWindow(scene.Window);
+  for (int frame = 0; frame < 30; ++frame)
+  {
+    scene.Window->Render();
+  }
+  EXPECT_EQ(ImageError(converged, atp::CaptureWindow(scene.Window)), 0) << "the picture changed after it converged";
+}
+
 /// The nodes drawn in a view that culls nothing must form a crack-free surface.
 void ExpectCrackFree(const std::vector<unsigned>& drawn)
 {
