@@ -89,15 +89,18 @@ public:
   vtkSetClampMacro(DecodeThreads, int, 0, 256);
   vtkGetMacro(DecodeThreads, int);
 
-  /// True when the last frame drew the complete cut its view asks for, or all of it that the
-  /// CacheBudget holds (nothing more is coming until the view or the budget changes). When the
-  /// latest frame of every renderer the mapper has drawn in culled its actor (the model wholly
-  /// outside their views), nothing is drawn and nothing needed: converged, and the figures and
-  /// drawn nodes say nothing was drawn. Before the mapper first draws, false.
+  /// True when every renderer of the latest round of frames (each renderer the mapper drew
+  /// in that started a frame since the renderer that started last had started its previous
+  /// one) drew the complete cut its view asks for, or all of it that the CacheBudget holds
+  /// (nothing more is coming until a view or the budget changes), or culled the actor (the
+  /// model wholly outside its view: nothing drawn, nothing needed). Before the mapper first
+  /// draws, false. A window captured in tiles (vtkWindowToImageFilter with a scale above 1)
+  /// renders each tile once: render the zoomed view until converged instead.
   bool GetConverged() const;
-  /// What the last frame did.
+  /// What the last frame that drew the model did (nothing drawn when every renderer of the
+  /// latest round culled it), with Converged as GetConverged says.
   const atp::RenderStatistics& GetStatistics() const;
-  /// Nodes drawn by the last frame, in drawing order (for tests and tools).
+  /// Nodes drawn by that frame, in drawing order (for tests and tools).
   const std::vector<unsigned>& GetDrawnNodes() const;
 
   void Render(vtkRenderer* renderer, vtkActor* actor) override;
