@@ -69,6 +69,23 @@ struct AtpScene
   }
 };
 
+/// An AtpScene whose window shows the model in two views side by side, each with its camera,
+/// at a few patches uploaded per frame, so that a view takes several frames to converge.
+struct TwoViewScene : AtpScene
+{
+  vtkRenderer* Left = FirstRenderer(Window);
+  vtkNew<vtkRenderer> Right;
+
+  TwoViewScene()
+  {
+    Mapper->SetUploadBudget(64 << 10);
+    Left->SetViewport(0, 0, 0.5, 1);
+    Right->SetViewport(0.5, 0, 1, 1);
+    Right->AddActor(Actor);
+    Window->AddRenderer(Right);
+  }
+};
+
 /// How a comparison poses the actor (before the camera is aimed) and the camera (after), the
 /// same in both of its scenes.
 struct Pose
@@ -246,25 +263,18 @@ TEST(Mapper, AFrameThatCullsTheModelIsConvergedWithNothingDrawn)
 TEST(Mapper, ARendererThatCullsTheModelLeavesAnotherOnesCutComing)
 {
   // Two views of one window, the right one looking away: the left one's cut is what counts.
-  AtpScene scene;
-  scene.Mapper->SetUploadBudget(64 << 10);
-  vtkRenderer* left = FirstRenderer(scene.Window);
-  left->SetViewport(0, 0, 0.5, 1);
-  vtkNew<vtkRenderer> right;
-  right->SetViewport(0.5, 0, 1, 1);
-  right->AddActor(scene.Actor);
-  scene.Window->AddRenderer(right);
-  AimCamera(left, 30, 40, 2.0);
-  AimCamera(right, 30, 40, 2.0);
+  TwoViewScene scene;
+  AimCamera(scene.Left, 30, 40, 2.0);
+  AimCamera(scene.Right, 30, 40, 2.0);
   scene.Window->Render();
-  right->GetActiveCamera()->Yaw(180);
+  scene.Right->GetActiveCamera()->Yaw(180);
   scene.Window->Render();
   EXPECT_FALSE(scene.Mapper->GetConverged()) << "the left view's cut is still coming";
   EXPECT_FALSE(scene.Mapper->GetDrawnNodes().empty());
   EXPECT_LT(RenderUntilConverged(scene.Window, scene.Mapper, 2000), 2000);
   EXPECT_GT(scene.Mapper->GetStatistics().Patches, std::size_t(atp::RootCount));
   // Both looking away: nothing drawn, nothing coming.
-  left->GetActiveCamera()->Yaw(180);
+  scene.Left->GetActiveCamera()->Yaw(180);
   scene.Window->Render();
   EXPECT_TRUE(scene.Mapper->GetConverged());
   EXPECT_TRUE(scene.Mapper->GetDrawnNodes().empty());
@@ -275,16 +285,9 @@ TEST(Mapper, TwoViewsConvergeTogether)
 {
   // A window of two views, a close one and a far one: converged said only whether the last
   // view drawn was, and a render-until-converged loop ended while the close one was coarse.
-  AtpScene scene;
-  scene.Mapper->SetUploadBudget(64 << 10);
-  vtkRenderer* close = FirstRenderer(scene.Window);
-  close->SetViewport(0, 0, 0.5, 1);
-  vtkNew<vtkRenderer> far;
-  far->SetViewport(0.5, 0, 1, 1);
-  far->AddActor(scene.Actor);
-  scene.Window->AddRenderer(far);
-  AimCamera(close, 100, 50, 3.0);
-  AimCamera(far, 30, 40, 0.3);
+  TwoViewScene scene;
+  AimCamera(scene.Left, 100, 50, 3.0); // close
+  AimCamera(scene.Right, 30, 40, 0.3); // far
   EXPECT_LT(RenderUntilConverged(scene.Window, scene.Mapper, 2000), 2000);
   const vtkSmartPointer<vtkImageData> converged = atp::CaptureWindow(scene.Window);
   for (int frame = 0; frame < 30; ++frame)
