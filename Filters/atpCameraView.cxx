@@ -50,7 +50,6 @@ double LargestStretch(const double l[9])
 }
 } // namespace
 
-
 std::string CameraProblem(vtkCamera* camera)
 {
   const auto finite = [](const double* values, int count) {

@@ -316,21 +316,21 @@ private:
   void CheckRange(PlyType type, double value, std::string_view token) const
   {
     double lo = 0, hi = 0;
+    const char* name = "";
     switch (type)
     {
-      case PlyType::Int8: lo = INT8_MIN, hi = INT8_MAX; break;
-      case PlyType::UInt8: hi = UINT8_MAX; break;
-      case PlyType::Int16: lo = INT16_MIN, hi = INT16_MAX; break;
-      case PlyType::UInt16: hi = UINT16_MAX; break;
-      case PlyType::Int32: lo = INT32_MIN, hi = INT32_MAX; break;
-      case PlyType::UInt32: hi = UINT32_MAX; break;
+      case PlyType::Int8: lo = INT8_MIN, hi = INT8_MAX, name = "char"; break;
+      case PlyType::UInt8: hi = UINT8_MAX, name = "uchar"; break;
+      case PlyType::Int16: lo = INT16_MIN, hi = INT16_MAX, name = "short"; break;
+      case PlyType::UInt16: hi = UINT16_MAX, name = "ushort"; break;
+      case PlyType::Int32: lo = INT32_MIN, hi = INT32_MAX, name = "int"; break;
+      case PlyType::UInt32: hi = UINT32_MAX, name = "uint"; break;
       case PlyType::Float32:
       case PlyType::Float64: return;
     }
     if (!(value >= lo && value <= hi && value == std::floor(value)))
     {
-      static const char* const names[] = { "char", "uchar", "short", "ushort", "int", "uint" };
-      this->Fail(Quoted(token) + " is not a value of its property's type, " + names[int(type)]);
+      this->Fail(Quoted(token) + " is not a value of its property's type, " + name);
     }
   }
 

@@ -104,8 +104,6 @@ struct WindowCache
   /// Did not fit beside what the view pins: not asked for again until the view changes
   /// (asking would only decode them again and again for nothing).
   std::vector<std::uint8_t> NoRoom;
-  /// Its last frame's requests: with several windows, the fetcher decodes for all of them.
-  std::vector<std::uint32_t> Wanted;
   /// Patches it asked for that arrived while another window drew: uploaded in its own context
   /// when it draws next.
   std::vector<atp::RenderPatch> Pending;
@@ -554,7 +552,6 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     cache.Reset(atp::RenderPatchStride(colors)); // a smaller budget gives GPU memory back
     cache.WantedFrame.assign(model->NodeCount(), 0);
     cache.NoRoom.assign(model->NodeCount(), 0);
-    cache.Wanted.clear();
     cache.Pending.clear();
     cache.ModelGeneration = in.ModelGeneration;
   }
@@ -667,29 +664,27 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
     in.Selector->Select(view, errorScale, resident, in.Cut);
   }
   stats.CutSeconds = SecondsSince(cutStart);
-  cache.Wanted.clear();
   for (const std::uint32_t node : in.Cut.Missing)
   {
     if (!in.Corrupt[node] && !cache.NoRoom[node])
     {
-      cache.Wanted.push_back(node);
+      watched.Wanted.push_back(node);
       cache.WantedFrame[node] = stats.Frame;
     }
   }
-  watched.Wanted = cache.Wanted;
   watched.ModelGeneration = in.ModelGeneration;
   if (in.Watched.size() == 1)
   {
-    in.Fetcher->Request(cache.Wanted);
+    in.Fetcher->Request(watched.Wanted);
   }
   else
   {
     // This renderer's first, then what the others asked for in their latest frames and has not
     // been handed to their windows yet, each node once: the fetcher's queue is replaced by
     // every request, and views of one window, or several windows, take turns.
-    in.Requests = cache.Wanted;
+    in.Requests = watched.Wanted;
     in.Requested.assign(model->NodeCount(), 0);
-    for (const std::uint32_t node : cache.Wanted)
+    for (const std::uint32_t node : watched.Wanted)
     {
       in.Requested[node] = 1;
     }
@@ -855,7 +850,7 @@ void vtkATPMapper::Render(vtkRenderer* renderer, vtkActor* actor)
   stats.DecodedPatches = in.Fetcher->DecodedPatches();
   // Corrupt patches are never coming, and those without room wait for the view to change or
   // the budget to grow.
-  stats.Converged = cache.Wanted.empty();
+  stats.Converged = watched.Wanted.empty();
   if (in.Prefetch)
   {
     in.Prefetch->Observe(view, errorScale, SecondsSince(in.Start));
