@@ -385,6 +385,7 @@ void ModelFile::ValidateNodes()
   int previousLevel = 0;
   std::uint64_t triangles = 0;
   std::uint64_t leafTriangles = 0; // the full-resolution mesh, all of it
+  std::uint64_t patchEnd = 0;      // where the next patch must start
   for (std::size_t i = 0; i < Count; ++i)
   {
     const ModelNode& n = NodeArray[i];
@@ -471,15 +472,24 @@ void ModelFile::ValidateNodes()
       }
     }
 
-    if (n.PatchOffset % PatchAlignment != 0)
-    {
-      bad(Cat("patch at offset ", n.PatchOffset, " is not ", PatchAlignment, "-byte aligned"));
-    }
     if (n.PatchOffset > h.PatchSectionBytes || n.PatchBytes > h.PatchSectionBytes - n.PatchOffset)
     {
       bad(Cat("patch of ", n.PatchBytes, " bytes at offset ", n.PatchOffset,
         " outside the patch section of ", h.PatchSectionBytes, " bytes"));
     }
+    // One layout only: so no patch is shared, skipped or overlapped, and every byte between
+    // patches is alignment padding (which Verify checks is zero).
+    if (n.PatchOffset != patchEnd)
+    {
+      bad(Cat("patch at offset ", n.PatchOffset, ", expected ", patchEnd,
+        ": patches follow one another in node order, each ", PatchAlignment, "-byte aligned"));
+    }
+    if (n.PatchBytes < PatchHeaderBytes)
+    {
+      bad(Cat("patch of ", n.PatchBytes, " bytes, shorter than the ", PatchHeaderBytes,
+        "-byte patch header"));
+    }
+    patchEnd = AlignUp(n.PatchOffset + n.PatchBytes, PatchAlignment);
     if (n.TriangleCount > MaxTrianglesPerPatch)
     {
       bad(Cat(n.TriangleCount, " triangles, more than ", MaxTrianglesPerPatch));
@@ -521,6 +531,11 @@ void ModelFile::ValidateNodes()
     {
       bad("reserved bytes are not zero");
     }
+  }
+  if (patchEnd != h.PatchSectionBytes)
+  {
+    Throw(Cat("the patches end at byte ", patchEnd, " of a patch section of ", h.PatchSectionBytes,
+      " bytes"));
   }
   if (triangles != h.StoredTriangles)
   {
@@ -583,6 +598,17 @@ void ModelFile::DecodePatch(std::size_t i, PatchMesh& out) const
   // Decoding threads keep their buffer: no allocation per patch.
   thread_local std::vector<std::uint8_t> bytes;
   ReadPatch(i, bytes);
+  // The decoder reads either patch format; a model holds the one of its version only.
+  static_assert(OldestReadableModelVersion == 3 && ModelVersion == 4 && OldestPatchFormatVersion == 3 &&
+      PatchFormatVersion == 4,
+    "a new model or patch format version needs its place here");
+  const std::uint8_t format =
+    Header().Version == OldestReadableModelVersion ? OldestPatchFormatVersion : PatchFormatVersion;
+  if (bytes[0] != format)
+  {
+    Throw(Cat("node ", i, ": patch format ", int(bytes[0]), " in a model of version ",
+      Header().Version, ", whose patches are format ", int(format)));
+  }
   atp::DecodePatch(bytes.data(), bytes.size(), PatchGrid(), out);
 }
 
@@ -603,9 +629,9 @@ std::vector<std::string> ModelFile::Verify() const
     ::madvise(advised, advisedBytes, MADV_SEQUENTIAL);
   }
 
-  // One pass over the section: each step copies from where the section hash stands (or the
-  // patch's start, if earlier) to the end of the patch, hashes what is new and checks the patch
-  // in the copy (patches are in file order in files the writer makes; any order is correct).
+  // One pass over the section: each step copies from where the section hash stands (the end of
+  // the patch before, as Open checked the layout) to the end of the patch, hashes it, and checks
+  // the padding before the patch and the patch in the copy.
   std::vector<std::string> problems;
   std::size_t corrupt = 0;
   const std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> hash(
@@ -619,22 +645,32 @@ std::vector<std::string> ModelFile::Verify() const
   std::uint64_t hashed = 0;
   std::vector<std::uint8_t> bytes;
   bool shrank = false;
+  // The checksum covers the padding too, but a file whose checksums were made to match would
+  // pass with bytes that no patch holds.
+  const auto checkPadding = [&](std::size_t paddingBytes, std::size_t after) {
+    if (std::any_of(bytes.begin(), bytes.begin() + std::ptrdiff_t(paddingBytes),
+          [](std::uint8_t b) { return b != 0; }))
+    {
+      problems.push_back(Cat(FilePath, ": node ", after, ": nonzero padding after its patch"));
+    }
+  };
   for (std::size_t i = 0; i < Count; ++i)
   {
     const ModelNode& n = NodeArray[i];
-    const std::uint64_t from = std::min(hashed, n.PatchOffset);
     const std::uint64_t end = n.PatchOffset + n.PatchBytes;
-    if (!CopyPatchSection(from, std::max(end, from), bytes))
+    if (!CopyPatchSection(hashed, end, bytes))
     {
       shrank = true;
       break;
     }
-    if (end > hashed)
+    const std::size_t padding = std::size_t(n.PatchOffset - hashed);
+    XXH3_64bits_update(state, bytes.data(), bytes.size());
+    hashed = end;
+    if (i > 0)
     {
-      XXH3_64bits_update(state, bytes.data() + (hashed - from), std::size_t(end - hashed));
-      hashed = end;
+      checkPadding(padding, i - 1);
     }
-    if (Checksum(bytes.data() + (n.PatchOffset - from), n.PatchBytes) != n.PatchChecksum &&
+    if (Checksum(bytes.data() + padding, n.PatchBytes) != n.PatchChecksum &&
       ++corrupt <= MaxListedPatches)
     {
       problems.push_back(Cat(FilePath, ": node ", i, ": patch checksum mismatch"));
@@ -650,6 +686,7 @@ std::vector<std::string> ModelFile::Verify() const
   }
   else
   {
+    checkPadding(bytes.size(), Count - 1);
     XXH3_64bits_update(state, bytes.data(), bytes.size());
     if (XXH3_64bits_digest(state) != h.PatchSectionChecksum)
     {

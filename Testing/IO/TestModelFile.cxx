@@ -43,6 +43,11 @@ namespace
 namespace fs = std::filesystem;
 using namespace atp;
 
+std::uint64_t AlignUp16(std::uint64_t bytes)
+{
+  return (bytes + 15) / 16 * 16;
+}
+
 // The offsets docs/atp-format.md documents.
 static_assert(offsetof(ModelHeader, FileBytes) == 24, "docs/atp-format.md");
 static_assert(offsetof(ModelHeader, PatchSectionChecksum) == 80, "docs/atp-format.md");
@@ -144,16 +149,16 @@ Model Synthetic(const std::vector<int>& splits = { 2, 6 })
   std::uint64_t triangles = 0;
   for (std::size_t i = 0; i < m.Nodes.size(); ++i)
   {
-    // Odd sizes and an empty patch exercise the alignment padding.
-    const std::size_t bytes = i == 3 ? 0 : 1 + random() % 3000;
+    // Odd sizes and an empty patch (the patch header alone) exercise the alignment padding.
+    const std::size_t bytes = PatchHeaderBytes + (i == 3 ? 0 : random() % 3000);
     std::vector<std::uint8_t> patch(bytes);
     for (auto& b : patch)
     {
       b = std::uint8_t(random());
     }
     m.Patches.push_back(patch);
-    m.Nodes[i].TriangleCount = std::uint32_t(bytes / 7);
-    m.Nodes[i].VertexCount = m.Nodes[i].TriangleCount / 2 + (bytes > 6 ? 3 : 0);
+    m.Nodes[i].TriangleCount = i == 3 ? 0 : std::uint32_t(bytes / 7);
+    m.Nodes[i].VertexCount = m.Nodes[i].TriangleCount == 0 ? 0 : m.Nodes[i].TriangleCount / 2 + 3;
     triangles += m.Nodes[i].TriangleCount;
     if (m.Nodes[i].TriangleCount == 0)
     {
@@ -361,6 +366,8 @@ TEST(ModelFile, EveryValidationRuleHasItsOwnError)
   const std::vector<std::uint8_t> good = ReadAll(path);
   const std::uint64_t size = good.size();
   ASSERT_EQ(OpenError(path), "") << "the unedited file must open, or the cases prove nothing";
+  ASSERT_EQ(written[3].PatchBytes, PatchHeaderBytes) << "node 3 holds an empty patch";
+  ASSERT_GE(written[9].PatchBytes, PatchHeaderBytes + 16) << "node 9's patch can lose 16 bytes";
 
   const std::vector<Rule> rules = {
     { "magic", Seal::None, [](H& h, N&, R&) { h.Magic[0] = 'X'; }, "not an ATP model" },
@@ -454,6 +461,13 @@ TEST(ModelFile, EveryValidationRuleHasItsOwnError)
     { "patch beyond section", Seal::All,
       [](H& h, N& n, R&) { n[9].PatchOffset = h.PatchSectionBytes + 16; },
       "outside the patch section" },
+    { "patch shared with another node", Seal::All, [](H&, N& n, R&) { n[9].PatchOffset = n[8].PatchOffset; },
+      "node 9: patch at offset " + std::to_string(written[8].PatchOffset) + ", expected " +
+        std::to_string(written[9].PatchOffset) },
+    { "patch shorter than its header", Seal::All, [](H&, N& n, R&) { n[3].PatchBytes = 40; },
+      "node 3: patch of 40 bytes, shorter than the 43-byte patch header" },
+    { "bytes after the last patch", Seal::All, [](H&, N& n, R&) { n[9].PatchBytes -= 16; },
+      "the patches end at byte " + std::to_string(written[9].PatchOffset + AlignUp16(written[9].PatchBytes - 16)) },
     { "triangle count", Seal::All,
       [](H& h, N& n, R&) {
         h.StoredTriangles += (1u << 24) + 1 - n[3].TriangleCount;
@@ -558,20 +572,81 @@ TEST(ModelFile, CorruptPatchesAreFoundOnCheckAndAllListedByVerify)
   EXPECT_EQ(problems[2], path + ": patch section checksum mismatch");
 }
 
+// Padding between patches, and after the last, must be zero: a changed byte there shows as a
+// section checksum mismatch, and also when the section checksum was made to match.
 TEST(ModelFile, PaddingBetweenPatchesIsVerified)
 {
   TempDirectory dir;
   const std::string path = dir / "model.atp";
   const std::vector<ModelNode> nodes = Write(Synthetic(), path);
-  std::vector<std::uint8_t> bytes = ReadAll(path);
-  ModelHeader h;
-  std::memcpy(&h, bytes.data(), sizeof(h));
-  const ModelNode& n = nodes[0];
-  ASSERT_NE(n.PatchBytes % 16, 0u) << "the test needs padding after patch 0";
-  bytes[h.PatchSectionOffset + n.PatchOffset + n.PatchBytes] = 1;
-  WriteAll(path, bytes);
-  const ModelFile file = ModelFile::Open(path);
-  EXPECT_EQ(file.Verify(), std::vector<std::string>{ path + ": patch section checksum mismatch" });
+  const std::vector<std::uint8_t> good = ReadAll(path);
+  for (const std::size_t i : { std::size_t(0), nodes.size() - 1 })
+  {
+    SCOPED_TRACE("after node " + std::to_string(i));
+    const ModelNode& n = nodes[i];
+    ASSERT_NE(n.PatchBytes % 16, 0u) << "the test needs padding after the patch";
+    const std::string padded = path + ": node " + std::to_string(i) + ": nonzero padding after its patch";
+    for (const Seal seal : { Seal::HeaderOnly, Seal::All })
+    {
+      WriteAll(path, good);
+      Rewrite(path,
+        [&](ModelHeader& h, std::vector<ModelNode>&, std::vector<std::uint8_t>& raw) {
+          raw[h.PatchSectionOffset + n.PatchOffset + n.PatchBytes] = 1;
+          if (seal == Seal::All)
+          {
+            h.PatchSectionChecksum = Checksum(raw.data() + h.PatchSectionOffset, h.PatchSectionBytes);
+          }
+        },
+        seal);
+      const ModelFile file = ModelFile::Open(path);
+      const std::vector<std::string> expected = seal == Seal::All
+        ? std::vector<std::string>{ padded }
+        : std::vector<std::string>{ padded, path + ": patch section checksum mismatch" };
+      EXPECT_EQ(file.Verify(), expected);
+    }
+  }
+}
+
+// A model's patches are of its version's format: the decoder reads both formats, but a patch of
+// the other one in a model is refused, not decoded as it happens to be.
+TEST(ModelFile, PatchesOfAnotherFormatThanTheModelsAreRefused)
+{
+  TempDirectory dir;
+  const std::string path = dir / "model.atp";
+  const std::vector<std::uint8_t> format3 =
+    ReadAll(std::string(ATP_TEST_DATA_DIR) + "/Format3/small-4-levels.atp");
+  const auto decodeError = [&](std::size_t node) -> std::string {
+    const ModelFile file = ModelFile::Open(path);
+    PatchMesh mesh;
+    try
+    {
+      file.DecodePatch(node, mesh);
+    }
+    catch (const ModelError& e)
+    {
+      return e.what();
+    }
+    return "";
+  };
+  WriteAll(path, format3);
+  ASSERT_EQ(decodeError(0), "") << "the model as it is decodes";
+
+  // Its header claims the current version: every patch is then of the wrong format.
+  Rewrite(path, [](ModelHeader& h, std::vector<ModelNode>&, std::vector<std::uint8_t>&) { h.Version = 4; },
+    Seal::All);
+  EXPECT_EQ(decodeError(0), path + ": node 0: patch format 3 in a model of version 4, whose patches are format 4");
+
+  // One patch claims the current format, checksums made to match.
+  WriteAll(path, format3);
+  Rewrite(path,
+    [](ModelHeader& h, std::vector<ModelNode>& n, std::vector<std::uint8_t>& raw) {
+      std::uint8_t* patch = raw.data() + h.PatchSectionOffset + n[0].PatchOffset;
+      patch[0] = PatchFormatVersion;
+      n[0].PatchChecksum = Checksum(patch, n[0].PatchBytes);
+      h.PatchSectionChecksum = Checksum(raw.data() + h.PatchSectionOffset, h.PatchSectionBytes);
+    },
+    Seal::All);
+  EXPECT_EQ(decodeError(0), path + ": node 0: patch format 4 in a model of version 3, whose patches are format 3");
 }
 
 TEST(ModelFile, RandomByteFlipsAreCaught)
