@@ -186,9 +186,10 @@ bool MeshTriangleSource::VanishesOnTheGrid(const float corners[3][3]) const
     return false;
   }
   float onGrid[3][3];
-  for (int c = 0; c < 3; ++c)
+  std::memcpy(onGrid, corners, sizeof(onGrid));
+  for (float* corner : onGrid)
   {
-    this->Grid.Dequantize(this->Grid.Quantize(corners[c]).data(), onGrid[c]);
+    this->Grid.Snap(corner);
   }
   return HasZeroArea(onGrid);
 }
@@ -285,6 +286,7 @@ void MeshTriangleSource::CollectOpenEdgeEnds()
     {
       float p[3];
       this->Vertices.Get(std::uint32_t(i), p);
+      this->Grid.Snap(p); // as Read gives it
       this->Check->AddEndPosition(p);
     }
   }
@@ -403,6 +405,15 @@ std::size_t MeshTriangleSource::Read(SoupTriangle* out, std::size_t max)
     if (!this->GetCorners(triangle, soup.V) || !this->HasArea(soup.V))
     {
       continue;
+    }
+    // The model holds every position on its grid, which merges points closer than its step (a
+    // seam whose two sides differ in the last bits): on the grid from here on, so that what the
+    // leaves weld and what counts as the input's boundary are what the model will hold. A
+    // boundary decided on the positions as read left the sides of such a seam to simplify apart
+    // above the leaves, which weld them: cracks at coarse levels only.
+    for (float* corner : soup.V)
+    {
+      this->Grid.Snap(corner);
     }
     std::uint8_t boundary = 0;
     for (int c = 0; c < 3; ++c)

@@ -1,7 +1,8 @@
 // The one path from a format reader's polygons to soup triangles, shared by every format:
-// triangulation (TriangleCursor), dropping degenerate triangles, marking boundary edges with a BoundarySketch
-// (checked by position with a BoundaryEdgeCheck) and giving corners their vertex normals. Opening makes a first pass over the faces (sketch, normal
-// sums, counts, errors); Read makes the second.
+// triangulation (TriangleCursor), dropping degenerate triangles, moving corners to the model's
+// grid, marking boundary edges with a BoundarySketch (checked by grid position with a
+// BoundaryEdgeCheck) and giving corners their vertex normals. Opening makes a first pass over
+// the faces (sketch, normal sums, counts, errors); Read makes the second.
 #ifndef atpMeshTriangleSource_h
 #define atpMeshTriangleSource_h
 

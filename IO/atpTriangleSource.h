@@ -38,6 +38,8 @@ struct VTKATPIO_EXPORT Box
 /// One input triangle with its corner positions, normals and colors copied (soup form), 64 bytes.
 struct SoupTriangle
 {
+  /// Corner positions, on the model's quantization grid (QuantizationGrid::ForBounds of the
+  /// source's Bounds()): the positions the model stores.
   float V[3][3];
   /// Corner normals (EncodeNormal of atpNormalEncoding.h): the vertex normals of the whole input
   /// mesh, so a vertex shared by triangles in different buckets has one normal everywhere.

@@ -662,6 +662,82 @@ TEST_F(Construction, UnweldedAndRepeatedTrianglesLeaveNoCrack)
   std::remove(path.c_str());
 }
 
+// A seam whose two sides' vertices differ by less than the model's grid step (copies of a
+// surface's vertices written with other rounding) is one edge in the model, whose positions are
+// grid points: it is no boundary of the input, and no level opens it. Decided on the positions as
+// read, the seam was boundary, each side simplified on its own above the leaves, and the leaves,
+// stored on the grid, closed it again: cracks at the coarse levels only.
+TEST_F(Construction, SeamsCloserThanTheGridAreNoBoundaryAndNoCrack)
+{
+  const vtkSmartPointer<vtkPolyData> torus = Torus(120, 60, 2);
+  double bounds[6];
+  torus->GetBounds(bounds);
+  const double lo[3] = { bounds[0], bounds[2], bounds[4] }, hi[3] = { bounds[1], bounds[3], bounds[5] };
+  const atp::QuantizationGrid grid = atp::QuantizationGrid::ForBounds(lo, hi);
+  // Every point on the grid, then a copy of it a quarter step off on each axis: the copy rounds
+  // back to the same grid point, and its float differs wherever floats are finer than the step.
+  const vtkIdType count = torus->GetNumberOfPoints();
+  vtkNew<vtkPoints> points;
+  std::vector<bool> differs(std::size_t(count), false);
+  for (int copy = 0; copy < 2; ++copy)
+  {
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      double p[3];
+      torus->GetPoint(i, p);
+      float f[3] = { float(p[0]), float(p[1]), float(p[2]) };
+      grid.Snap(f);
+      for (int a = 0; copy == 1 && a < 3; ++a)
+      {
+        const float nudged = float(double(f[a]) + grid.Step / 4);
+        differs[std::size_t(i)] = differs[std::size_t(i)] || nudged != f[a];
+        f[a] = nudged;
+      }
+      points->InsertNextPoint(f[0], f[1], f[2]);
+    }
+  }
+  // The triangles of the half x > 0 take the copies.
+  vtkNew<vtkCellArray> triangles;
+  vtkIdType size;
+  const vtkIdType* ids;
+  vtkCellArray* polys = torus->GetPolys();
+  std::size_t seamVerticesApart = 0;
+  std::set<vtkIdType> seen;
+  for (polys->InitTraversal(); polys->GetNextCell(size, ids);)
+  {
+    double x = 0;
+    for (int c = 0; c < 3; ++c)
+    {
+      x += torus->GetPoint(ids[c])[0];
+    }
+    vtkIdType own[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      own[c] = ids[c] + (x > 0 ? count : 0);
+      if (x > 0 && std::abs(torus->GetPoint(ids[c])[0]) < 0.2 && differs[std::size_t(ids[c])] &&
+        seen.insert(ids[c]).second)
+      {
+        ++seamVerticesApart;
+      }
+    }
+    triangles->InsertNextCell(3, own);
+  }
+  ASSERT_GT(seamVerticesApart, 10u) << "the test needs seam vertices whose copies differ";
+  vtkNew<vtkPolyData> mesh;
+  mesh->SetPoints(points);
+  mesh->SetPolys(triangles);
+
+  const std::string path = TempPath("seam.atp");
+  const vtkSmartPointer<vtkATPBuilder> builder = SmallBuilder(mesh, path);
+  ASSERT_EQ(builder->Build(), 1) << builder->GetErrorMessage();
+  EXPECT_EQ(builder->GetInputStats().BoundaryEdges, 2u * 14) << "the two holes' edges alone";
+  const atp::ModelFile model = atp::ModelFile::Open(path);
+  EXPECT_EQ(model.Header().InputBoundaryEdges, 2u * 14);
+  EXPECT_EQ(OpenEdges(atp::ExtractCut(model, atp::SelectLevel(model, 64))).size(), 2u * 14);
+  ExpectEveryLevelCrackFree(model);
+  std::remove(path.c_str());
+}
+
 // Three sheets on one spine: its edges are used three times, so they are no boundary, and a
 // patch holding two of the sheets would take them for inner edges: their ends must neither
 // move nor be stored on a coarser grid than in the patch holding the third sheet.

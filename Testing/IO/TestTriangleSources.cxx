@@ -778,13 +778,14 @@ TEST_F(TriangleSources, VerticesNoFaceUsesLeaveTheBoxAndThePrecisionAlone)
     p[0] *= 0.01;
     p[1] *= 0.01;
   }
+  const std::vector<std::array<float, 9>> alone = Soup(this->Read(this->Write("alone.ply", PlyBytes(mesh))));
   for (const double far : { 1e6, 1e30, -1e12 })
   {
     SCOPED_TRACE(far);
     Mesh stray = mesh;
     stray.Points.push_back({ far, 0.5, far });
     const Result result = this->Read(this->Write("stray.ply", PlyBytes(stray)));
-    EXPECT_EQ(Soup(result), ExpectedSoup(mesh));
+    EXPECT_EQ(Soup(result), alone);
     EXPECT_EQ(result.Stats.DegenerateDropped, 0u);
     EXPECT_EQ(result.Stats.VerticesRead, stray.Points.size());
     EXPECT_EQ(result.Bounds.Min, (std::array<double, 3>{ { 0, 0, 0 } }));
