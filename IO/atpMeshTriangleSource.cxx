@@ -4,6 +4,7 @@
 #include "atpProduceConsume.h"
 #include "atpResidentPages.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -275,6 +276,7 @@ void MeshTriangleSource::CollectOpenEdgeEnds()
   // The scan reads the whole sketch (and, for an unwelded mesh, every vertex): it lets go of
   // what it has read a few MiB at a time, or that would add to the peak of what opening holds.
   constexpr std::uint64_t Interval = std::uint64_t(1) << 18;
+  std::vector<std::pair<std::array<std::uint32_t, 3>, std::uint32_t>> atPosition;
   for (std::uint64_t i = 0; i < this->Vertices.Count; ++i)
   {
     if (i % Interval == 0 && i > 0)
@@ -286,8 +288,48 @@ void MeshTriangleSource::CollectOpenEdgeEnds()
     {
       float p[3];
       this->Vertices.Get(std::uint32_t(i), p);
-      this->Grid.Snap(p); // as Read gives it
+      const std::array<std::uint32_t, 3> q = this->Grid.Quantize(p);
+      this->Grid.Dequantize(q.data(), p); // as Read gives it
       this->Check->AddEndPosition(p);
+      if (atPosition.size() < MaxJoinedVertices + 1)
+      {
+        atPosition.emplace_back(q, std::uint32_t(i));
+      }
+    }
+  }
+  this->JoinVerticesAtOnePosition(atPosition);
+}
+
+void MeshTriangleSource::JoinVerticesAtOnePosition(
+  std::vector<std::pair<std::array<std::uint32_t, 3>, std::uint32_t>>& atPosition)
+{
+  if (atPosition.size() > MaxJoinedVertices)
+  {
+    return; // a soup too large to join this way: its vertices keep their own normals
+  }
+  // By position, then vertex: the sums are added in vertex order, the same on every run.
+  std::sort(atPosition.begin(), atPosition.end());
+  for (std::size_t first = 0, end = 0; first < atPosition.size(); first = end)
+  {
+    std::array<float, 3> sum{ { 0, 0, 0 } };
+    unsigned uses = 0;
+    for (end = first; end < atPosition.size() && atPosition[end].first == atPosition[first].first; ++end)
+    {
+      const std::uint32_t v = atPosition[end].second;
+      for (int a = 0; a < 3; ++a)
+      {
+        sum[std::size_t(a)] += this->NormalSums[v][std::size_t(a)];
+      }
+      uses += this->InputUses[v];
+    }
+    if (end - first < 2)
+    {
+      continue;
+    }
+    for (std::size_t k = first; k < end; ++k)
+    {
+      this->NormalSums[atPosition[k].second] = sum;
+      this->InputUses[atPosition[k].second] = std::uint8_t(std::min(uses, unsigned(ManyInputUses)));
     }
   }
 }

@@ -16,6 +16,8 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace atp
 {
@@ -43,8 +45,15 @@ private:
   /// The first pass: boundary sketch, area-weighted vertex normal sums, the triangles per
   /// vertex and the box of the vertices the faces use.
   void FirstPass();
-  /// Gives the check the positions of the vertices on edges the sketch found open.
+  /// Gives the check the positions of the vertices on edges the sketch found open, and joins
+  /// those that share a grid position (JoinVerticesAtOnePosition).
   void CollectOpenEdgeEnds();
+  /// Vertices on edges open by index that share a grid position (a seam of copied vertices, an
+  /// unwelded mesh) are one vertex of the model, which the leaves weld: each gets the normal sum
+  /// and triangle count of them all, so the model has one normal there in every patch, that of
+  /// the whole fan. At most MaxJoinedVertices of them: beyond, each keeps its own.
+  void JoinVerticesAtOnePosition(std::vector<std::pair<std::array<std::uint32_t, 3>, std::uint32_t>>& atPosition);
+  static constexpr std::size_t MaxJoinedVertices = std::size_t(1) << 22;
   /// Counts the triangle's edges between two such positions in the check, and marks the
   /// triangle (BoundaryEdgeCheck::CountedBit) when it has one.
   void CountEdgesBetweenEnds(SoupTriangle& soup);
