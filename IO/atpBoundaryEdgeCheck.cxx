@@ -124,22 +124,46 @@ bool BoundaryEdgeCheck::IsEndPosition(const float p[3]) const
   return this->Ends.Holds(PositionKey(p));
 }
 
+void BoundaryEdgeCheck::MarkNearAnother(const float p[3])
+{
+  if (!this->Ends.Keys.empty())
+  {
+    const std::size_t slot = this->Ends.Slot(PositionKey(p));
+    if (this->Ends.Keys[slot] != 0)
+    {
+      this->Ends.Uses[slot] |= NearBit;
+    }
+  }
+}
+
+bool BoundaryEdgeCheck::IsNearAnother(const float p[3]) const
+{
+  if (this->Ends.Keys.empty())
+  {
+    return false;
+  }
+  const std::size_t slot = this->Ends.Slot(PositionKey(p));
+  return this->Ends.Keys[slot] != 0 && (this->Ends.Uses[slot] & NearBit);
+}
+
 void BoundaryEdgeCheck::Count(const float a[3], const float b[3], bool open)
 {
-  if (!this->TooMany && !this->Edges.Add(EdgeKey(a, b), this->MaxEdges, open ? OpenBit : 0))
+  const std::uint8_t flags =
+    std::uint8_t((open ? OpenBit : 0) | (this->IsNearAnother(a) || this->IsNearAnother(b) ? NearBit : 0));
+  if (!this->TooMany && !this->Edges.Add(EdgeKey(a, b), this->MaxEdges, flags))
   {
     this->Overflow();
   }
 }
 
-int BoundaryEdgeCheck::TimesUsed(const float a[3], const float b[3]) const
+std::uint8_t BoundaryEdgeCheck::EdgeUses(const float a[3], const float b[3]) const
 {
   if (this->Edges.Keys.empty())
   {
     return 0;
   }
   const std::size_t slot = this->Edges.Slot(EdgeKey(a, b));
-  return this->Edges.Keys[slot] != 0 ? this->Edges.Uses[slot] & UseCount : 0;
+  return this->Edges.Keys[slot] != 0 ? this->Edges.Uses[slot] : 0;
 }
 
 void BoundaryEdgeCheck::Apply(SoupTriangle* triangles, std::size_t count) const
@@ -160,12 +184,13 @@ void BoundaryEdgeCheck::Apply(SoupTriangle* triangles, std::size_t count) const
     for (int c = 0; c < 3; ++c)
     {
       const std::uint8_t bit = std::uint8_t(1u << c);
-      const int uses = this->TimesUsed(triangle.V[c], triangle.V[(c + 1) % 3]);
+      const std::uint8_t edge = this->EdgeUses(triangle.V[c], triangle.V[(c + 1) % 3]);
+      const int uses = edge & UseCount;
       if (uses != 1)
       {
         triangle.BoundaryEdges &= std::uint8_t(~bit);
       }
-      if (uses >= 3)
+      if (uses >= 3 || (uses == 1 && (edge & NearBit)))
       {
         triangle.BoundaryEdges |= std::uint8_t(8u << c);
       }

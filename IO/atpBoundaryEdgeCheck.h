@@ -40,6 +40,10 @@ public:
   void AddEndPosition(const float p[3]);
   bool HasEndPositions() const { return this->Ends.Count > 0; }
   bool IsEndPosition(const float p[3]) const;
+  /// Marks the end position p as lying within a grid step of another one (after every end
+  /// position is added): the two sides of a seam whose copies rounded to neighbouring grid
+  /// points, which the model keeps apart by a step.
+  void MarkNearAnother(const float p[3]);
   /// Once the input is read: the end positions are no longer needed.
   void DropEndPositions() { this->Ends = Table(); }
 
@@ -54,9 +58,11 @@ public:
   void Count(const float a[3], const float b[3], bool open);
 
   /// For the triangles with an edge counted (CountedBit): clears the BoundaryEdges bits of the
-  /// edges not used exactly once, and marks those used three times or more as edges whose ends
-  /// never move (bit 3 + i), flagged by the sketch or not (a vertex where the boundary pinches
-  /// fails the sketch's test). Clears CountedBit.
+  /// edges not used exactly once, and marks as edges whose ends never move (bit 3 + i) those used
+  /// three times or more, flagged by the sketch or not (a vertex where the boundary pinches fails
+  /// the sketch's test), and those used once with an end near another (MarkNearAnother): each
+  /// side of such a seam simplified on its own would move away from the other. Clears
+  /// CountedBit.
   void Apply(SoupTriangle* triangles, std::size_t count) const;
 
   /// Distinct edges counted once: the input's boundary edges by position.
@@ -84,9 +90,12 @@ private:
   };
 
   void Overflow();
-  static constexpr std::uint8_t UseCount = 3, OpenBit = 128;
-  /// How many times the edge was counted: 0 (never), 1, 2, or 3 for three or more.
-  int TimesUsed(const float a[3], const float b[3]) const;
+  /// Uses: the count in the low bits; OpenBit: a use was flagged open; NearBit: an end
+  /// position near another (Ends), an edge with such an end (Edges).
+  static constexpr std::uint8_t UseCount = 3, NearBit = 64, OpenBit = 128;
+  /// The edge's Uses byte: 0 when never counted.
+  std::uint8_t EdgeUses(const float a[3], const float b[3]) const;
+  bool IsNearAnother(const float p[3]) const;
 
   std::size_t MaxEdges;
   bool TooMany = false;

@@ -273,40 +273,70 @@ void MeshTriangleSource::FirstPass()
 
 void MeshTriangleSource::CollectOpenEdgeEnds()
 {
-  // The scan reads the whole sketch (and, for an unwelded mesh, every vertex): it lets go of
+  // Each scan reads the whole sketch (and, for an unwelded mesh, every vertex): it lets go of
   // what it has read a few MiB at a time, or that would add to the peak of what opening holds.
-  constexpr std::uint64_t Interval = std::uint64_t(1) << 18;
-  std::vector<std::pair<std::array<std::uint32_t, 3>, std::uint32_t>> atPosition;
-  for (std::uint64_t i = 0; i < this->Vertices.Count; ++i)
-  {
-    if (i % Interval == 0 && i > 0)
+  const auto forEachOpenEdgeVertex = [this](auto visit) {
+    constexpr std::uint64_t Interval = std::uint64_t(1) << 18;
+    for (std::uint64_t i = 0; i < this->Vertices.Count; ++i)
     {
-      this->Sketch.ReleaseResidentPages(i - Interval, Interval);
-      this->ReleaseVertexPages(i - Interval, Interval);
-    }
-    if (this->Sketch.OnOpenEdge(std::uint32_t(i)))
-    {
-      float p[3];
-      this->Vertices.Get(std::uint32_t(i), p);
-      const std::array<std::uint32_t, 3> q = this->Grid.Quantize(p);
-      this->Grid.Dequantize(q.data(), p); // as Read gives it
-      this->Check->AddEndPosition(p);
-      if (atPosition.size() < MaxJoinedVertices + 1)
+      if (i % Interval == 0 && i > 0)
       {
-        atPosition.emplace_back(q, std::uint32_t(i));
+        this->Sketch.ReleaseResidentPages(i - Interval, Interval);
+        this->ReleaseVertexPages(i - Interval, Interval);
+      }
+      if (this->Sketch.OnOpenEdge(std::uint32_t(i)))
+      {
+        float p[3];
+        this->Vertices.Get(std::uint32_t(i), p);
+        const std::array<std::uint32_t, 3> q = this->Grid.Snap(p); // as Read gives it
+        visit(std::uint32_t(i), q, p);
       }
     }
+  };
+  std::size_t openEdgeVertices = 0;
+  forEachOpenEdgeVertex([&](std::uint32_t, const std::array<std::uint32_t, 3>&, const float* p) {
+    this->Check->AddEndPosition(p);
+    ++openEdgeVertices;
+  });
+  if (openEdgeVertices == 0)
+  {
+    return;
   }
+  std::vector<std::pair<std::array<std::uint32_t, 3>, std::uint32_t>> atPosition;
+  const bool join = openEdgeVertices <= MaxJoinedVertices;
+  atPosition.reserve(join ? openEdgeVertices : 0);
+  forEachOpenEdgeVertex([&](std::uint32_t v, const std::array<std::uint32_t, 3>& q, const float* p) {
+    if (join)
+    {
+      atPosition.emplace_back(q, v);
+    }
+    // An end position one grid point away from another: a seam whose sides' copies rounded to
+    // neighbouring grid points.
+    for (int d = 0; d < 27; ++d)
+    {
+      const int offset[3] = { d % 3 - 1, d / 3 % 3 - 1, d / 9 - 1 };
+      std::uint32_t n[3];
+      bool onGrid = d != 13; // 13: the point itself
+      for (int a = 0; a < 3 && onGrid; ++a)
+      {
+        n[a] = q[std::size_t(a)] + std::uint32_t(offset[a]);
+        onGrid = (offset[a] >= 0 || q[std::size_t(a)] > 0) &&
+          (offset[a] <= 0 || q[std::size_t(a)] < QuantizationGrid::MaxInteger);
+      }
+      float neighbour[3];
+      if (onGrid && (this->Grid.Dequantize(n, neighbour), this->Check->IsEndPosition(neighbour)))
+      {
+        this->Check->MarkNearAnother(p);
+        break;
+      }
+    }
+  });
   this->JoinVerticesAtOnePosition(atPosition);
 }
 
 void MeshTriangleSource::JoinVerticesAtOnePosition(
   std::vector<std::pair<std::array<std::uint32_t, 3>, std::uint32_t>>& atPosition)
 {
-  if (atPosition.size() > MaxJoinedVertices)
-  {
-    return; // a soup too large to join this way: its vertices keep their own normals
-  }
   // By position, then vertex: the sums are added in vertex order, the same on every run.
   std::sort(atPosition.begin(), atPosition.end());
   for (std::size_t first = 0, end = 0; first < atPosition.size(); first = end)
@@ -328,10 +358,16 @@ void MeshTriangleSource::JoinVerticesAtOnePosition(
     }
     for (std::size_t k = first; k < end; ++k)
     {
-      this->NormalSums[atPosition[k].second] = sum;
-      this->InputUses[atPosition[k].second] = std::uint8_t(std::min(uses, unsigned(ManyInputUses)));
+      const std::uint32_t v = atPosition[k].second;
+      this->NormalSums[v] = sum;
+      this->InputUses[v] = std::uint8_t(std::min(uses, unsigned(ManyInputUses)));
+      if (k > first && this->Vertices.HasColors())
+      {
+        this->ColorFrom.emplace_back(v, atPosition[first].second);
+      }
     }
   }
+  std::sort(this->ColorFrom.begin(), this->ColorFrom.end());
 }
 
 void MeshTriangleSource::CountEdgesBetweenEnds(SoupTriangle& soup)
@@ -400,7 +436,14 @@ void MeshTriangleSource::SetCornerColors(const std::uint32_t triangle[3], SoupTr
   }
   for (int c = 0; c < 3; ++c)
   {
-    this->Vertices.GetColor(triangle[c], soup.Colors[c]);
+    std::uint32_t v = triangle[c];
+    if (!this->ColorFrom.empty() && this->Sketch.OnOpenEdge(v))
+    {
+      const auto joined = std::lower_bound(
+        this->ColorFrom.begin(), this->ColorFrom.end(), std::make_pair(v, std::uint32_t(0)));
+      v = joined != this->ColorFrom.end() && joined->first == v ? joined->second : v;
+    }
+    this->Vertices.GetColor(v, soup.Colors[c]);
   }
 }
 

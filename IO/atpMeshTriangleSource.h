@@ -49,11 +49,15 @@ private:
   /// those that share a grid position (JoinVerticesAtOnePosition).
   void CollectOpenEdgeEnds();
   /// Vertices on edges open by index that share a grid position (a seam of copied vertices, an
-  /// unwelded mesh) are one vertex of the model, which the leaves weld: each gets the normal sum
-  /// and triangle count of them all, so the model has one normal there in every patch, that of
-  /// the whole fan. At most MaxJoinedVertices of them: beyond, each keeps its own.
+  /// unwelded mesh; `atPosition` holds them with their grid points) are one vertex of the model,
+  /// which the leaves weld: each gets the normal sum and triangle count of them all, and the
+  /// color of the first, so the model has one normal and one color there in every patch, the
+  /// normal of the whole fan. Only with at most MaxJoinedVertices vertices on open edges:
+  /// beyond, each keeps its own.
   void JoinVerticesAtOnePosition(std::vector<std::pair<std::array<std::uint32_t, 3>, std::uint32_t>>& atPosition);
   static constexpr std::size_t MaxJoinedVertices = std::size_t(1) << 22;
+  /// (vertex, the joined vertex whose color it takes), by vertex.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> ColorFrom;
   /// Counts the triangle's edges between two such positions in the check, and marks the
   /// triangle (BoundaryEdgeCheck::CountedBit) when it has one.
   void CountEdgesBetweenEnds(SoupTriangle& soup);

@@ -633,7 +633,6 @@ std::vector<std::string> ModelFile::Verify() const
   // the patch before, as Open checked the layout) to the end of the patch, hashes it, and checks
   // the padding before the patch and the patch in the copy.
   std::vector<std::string> problems;
-  std::size_t corrupt = 0;
   const std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> hash(
     XXH3_createState(), XXH3_freeState);
   XXH3_state_t* state = hash.get();
@@ -645,13 +644,25 @@ std::vector<std::string> ModelFile::Verify() const
   std::uint64_t hashed = 0;
   std::vector<std::uint8_t> bytes;
   bool shrank = false;
+  // A damaged file can have a problem at every node: the first MaxListedPatches are listed.
+  std::size_t unlisted = 0;
+  const auto report = [&](std::string problem) {
+    if (problems.size() < MaxListedPatches)
+    {
+      problems.push_back(std::move(problem));
+    }
+    else
+    {
+      ++unlisted;
+    }
+  };
   // The checksum covers the padding too, but a file whose checksums were made to match would
   // pass with bytes that no patch holds.
   const auto checkPadding = [&](std::size_t paddingBytes, std::size_t after) {
     if (std::any_of(bytes.begin(), bytes.begin() + std::ptrdiff_t(paddingBytes),
           [](std::uint8_t b) { return b != 0; }))
     {
-      problems.push_back(Cat(FilePath, ": node ", after, ": nonzero padding after its patch"));
+      report(Cat(FilePath, ": node ", after, ": nonzero padding after its patch"));
     }
   };
   for (std::size_t i = 0; i < Count; ++i)
@@ -670,28 +681,28 @@ std::vector<std::string> ModelFile::Verify() const
     {
       checkPadding(padding, i - 1);
     }
-    if (Checksum(bytes.data() + padding, n.PatchBytes) != n.PatchChecksum &&
-      ++corrupt <= MaxListedPatches)
+    if (Checksum(bytes.data() + padding, n.PatchBytes) != n.PatchChecksum)
     {
-      problems.push_back(Cat(FilePath, ": node ", i, ": patch checksum mismatch"));
+      report(Cat(FilePath, ": node ", i, ": patch checksum mismatch"));
     }
   }
-  if (corrupt > MaxListedPatches)
-  {
-    problems.push_back(Cat(FilePath, ": ", corrupt - MaxListedPatches, " more corrupt patches"));
-  }
-  if (shrank || !CopyPatchSection(hashed, h.PatchSectionBytes, bytes))
-  {
-    problems.push_back(Cat(FilePath, ": ", ShrankWhileOpen));
-  }
-  else
+  const bool complete = !shrank && CopyPatchSection(hashed, h.PatchSectionBytes, bytes);
+  if (complete)
   {
     checkPadding(bytes.size(), Count - 1);
     XXH3_64bits_update(state, bytes.data(), bytes.size());
-    if (XXH3_64bits_digest(state) != h.PatchSectionChecksum)
-    {
-      problems.push_back(Cat(FilePath, ": patch section checksum mismatch"));
-    }
+  }
+  if (unlisted > 0)
+  {
+    problems.push_back(Cat(FilePath, ": ", unlisted, " more corrupt patches or paddings"));
+  }
+  if (!complete)
+  {
+    problems.push_back(Cat(FilePath, ": ", ShrankWhileOpen));
+  }
+  else if (XXH3_64bits_digest(state) != h.PatchSectionChecksum)
+  {
+    problems.push_back(Cat(FilePath, ": patch section checksum mismatch"));
   }
 
   if (advisedBytes > 0)

@@ -39,8 +39,14 @@ struct VTKATPIO_EXPORT QuantizationGrid
   std::array<std::uint32_t, 3> Quantize(const float p[3]) const;
   /// Exact in double, then one rounding to float: the same integers give the same float bits.
   void Dequantize(const std::uint32_t q[3], float out[3]) const;
-  /// Moves p to its grid point (Quantize, then Dequantize): where a model stores it.
-  void Snap(float p[3]) const { this->Dequantize(this->Quantize(p).data(), p); }
+  /// Moves p to its grid point (Quantize, then Dequantize), where a model stores it; returns
+  /// the point's integers.
+  std::array<std::uint32_t, 3> Snap(float p[3]) const
+  {
+    const std::array<std::uint32_t, 3> q = this->Quantize(p);
+    this->Dequantize(q.data(), p);
+    return q;
+  }
   /// The largest distance per coordinate between a point in the box and its dequantized float
   /// (every grid point within the box is a float: the conversion adds no error).
   double MaxError() const { return this->Step / 2; }

@@ -453,7 +453,7 @@ TEST(ModelFile, EveryValidationRuleHasItsOwnError)
       "node 6: child 9 is not its child tetrahedron 0" },
     { "child names another parent", Seal::All, [](H&, N& n, R&) { n[8].Parent = 7; },
       "node 6: child 8 names node 7 as its parent" },
-    { "patch alignment", Seal::All, [](H&, N& n, R&) { n[7].PatchOffset += 4; },
+    { "patch out of place", Seal::All, [](H&, N& n, R&) { n[7].PatchOffset += 4; },
       "node 7: patch at offset" },
     { "patch too long", Seal::All,
       [](H& h, N& n, R&) { n[9].PatchBytes = std::uint32_t(h.PatchSectionBytes); },
@@ -605,6 +605,36 @@ TEST(ModelFile, PaddingBetweenPatchesIsVerified)
       EXPECT_EQ(file.Verify(), expected);
     }
   }
+}
+
+// Every patch corrupt, and every padding: the first 100 problems are listed, then a count.
+TEST(ModelFile, VerifyListsAHundredProblemsThenCounts)
+{
+  TempDirectory dir;
+  const std::string path = dir / "model.atp";
+  std::vector<int> splits(100);
+  std::iota(splits.begin(), splits.end(), 0);
+  const std::vector<ModelNode> nodes = Write(Synthetic(splits), path);
+  std::size_t paddings = 0;
+  Rewrite(path,
+    [&](ModelHeader& h, std::vector<ModelNode>& n, std::vector<std::uint8_t>& raw) {
+      for (const ModelNode& node : n)
+      {
+        raw[h.PatchSectionOffset + node.PatchOffset] ^= 1;
+        if (node.PatchBytes % 16 != 0)
+        {
+          raw[h.PatchSectionOffset + node.PatchOffset + node.PatchBytes] = 1;
+          ++paddings;
+        }
+      }
+    },
+    Seal::All);
+  const std::vector<std::string> problems = ModelFile::Open(path).Verify();
+  ASSERT_EQ(problems.size(), 102u);
+  EXPECT_EQ(problems[0], path + ": node 0: patch checksum mismatch");
+  EXPECT_EQ(problems[100], path + ": " + std::to_string(nodes.size() + paddings - 100) +
+    " more corrupt patches or paddings");
+  EXPECT_EQ(problems[101], path + ": patch section checksum mismatch");
 }
 
 // A model's patches are of its version's format: the decoder reads both formats, but a patch of

@@ -40,6 +40,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace
@@ -765,6 +766,68 @@ TEST_F(TriangleSources, AsciiPlyRecordsStandOneToALine)
                             "property float x\nproperty float y\nproperty float z\nend_header\n";
   this->ExpectError(this->Write("note.ply", other + "5 6\n0 0 0\n1 0 0\n0 1 0\n"),
     "line 10: note 0 has more values on its line than the header's properties");
+}
+
+// A seam of copied vertices (each side's faces on their own copies, as exporters write texture
+// seams) is one line of vertices in the model: its edges are no boundary, and the copies of a
+// vertex give their corners one normal (that of all their faces), one color (the first copy's)
+// and one count of the triangles that use the position.
+TEST_F(TriangleSources, CopiesOfAVertexOnASeamShareOneNormalColorAndCount)
+{
+  Mesh mesh = Colored(Grid(4, 2, false), false);
+  for (auto& p : mesh.Points)
+  {
+    p[2] = 0.25 * p[0] * p[0]; // bent, so that each side's faces face another way
+  }
+  const std::size_t originals = mesh.Points.size();
+  std::map<std::size_t, std::int64_t> copyOf;
+  for (std::size_t i = 0; i < originals; ++i)
+  {
+    if (mesh.Points[i][0] == 2)
+    {
+      copyOf[i] = std::int64_t(mesh.Points.size());
+      mesh.Points.push_back(mesh.Points[i]);
+      mesh.Colors.push_back({ { 1, 2, 3, 255 } });
+    }
+  }
+  for (auto& face : mesh.Faces)
+  {
+    const bool right = std::all_of(face.begin(), face.end(), [&](std::int64_t v) { return mesh.Points[std::size_t(v)][0] >= 2; });
+    for (auto& v : face)
+    {
+      v = right && copyOf.count(std::size_t(v)) ? copyOf[std::size_t(v)] : v;
+    }
+  }
+  PlyOptions options;
+  options.ColorType = "uchar";
+  const Result result = this->Read(this->Write("seam.ply", PlyBytes(mesh, options)));
+  EXPECT_EQ(result.Stats.BoundaryEdges, 2u * (4 + 2)) << "the grid's outline alone";
+  std::size_t seamCorners = 0;
+  std::map<double, std::tuple<std::array<std::int16_t, 2>, std::array<std::uint8_t, 4>, int>> atSeam;
+  for (const atp::SoupTriangle& t : result.Triangles)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      if (t.V[c][0] != 2)
+      {
+        continue;
+      }
+      ++seamCorners;
+      const auto corner = std::make_tuple(std::array<std::int16_t, 2>{ { t.Normals[c][0], t.Normals[c][1] } },
+        std::array<std::uint8_t, 4>{ { t.Colors[c][0], t.Colors[c][1], t.Colors[c][2], t.Colors[c][3] } },
+        int(t.InputUses[c]));
+      const auto [it, added] = atSeam.emplace(double(t.V[c][1]), corner);
+      EXPECT_TRUE(added || it->second == corner) << "another normal, color or count at y = " << t.V[c][1];
+    }
+  }
+  ASSERT_EQ(atSeam.size(), 3u);
+  EXPECT_EQ(seamCorners, 3u + 6u + 3u);
+  EXPECT_EQ(std::get<2>(atSeam[1.0]), 6) << "the middle vertex of the seam has 6 triangles";
+  EXPECT_NE(std::get<1>(atSeam[1.0]), (std::array<std::uint8_t, 4>{ { 1, 2, 3, 255 } })) << "the first copy's color";
+  float normal[3];
+  const std::int16_t stored[2] = { std::get<0>(atSeam[1.0])[0], std::get<0>(atSeam[1.0])[1] };
+  atp::DecodeNormal(stored, normal);
+  EXPECT_NEAR(normal[0], -std::sin(std::atan(1.0)), 0.03) << "the normal of both sides' faces: the slope there is 1";
 }
 
 TEST_F(TriangleSources, VerticesNoFaceUsesLeaveTheBoxAndThePrecisionAlone)
