@@ -47,12 +47,16 @@ QuantizationGrid QuantizationGrid::ForBounds(
 
 std::array<std::uint32_t, 3> QuantizationGrid::Quantize(const float p[3]) const
 {
+  // Every input corner comes through here: no division and no libm call. The step is a power
+  // of two, so multiplying by its inverse is exact, as dividing was; and truncating equals
+  // flooring where the result is kept, at 0 and above.
+  const double scale = 1 / this->Step;
   std::array<std::uint32_t, 3> q;
   for (int a = 0; a < 3; ++a)
   {
-    const double x = std::floor((p[a] - this->Origin[a]) / this->Step + 0.5);
+    const double x = (p[a] - this->Origin[a]) * scale + 0.5;
     // Written so that NaN clamps to 0.
-    q[a] = x >= 0 ? static_cast<std::uint32_t>(std::fmin(x, double(MaxInteger))) : 0;
+    q[a] = x >= 0 ? static_cast<std::uint32_t>(x < double(MaxInteger) ? x : double(MaxInteger)) : 0;
   }
   return q;
 }
