@@ -491,11 +491,11 @@ std::size_t MeshTriangleSource::Read(SoupTriangle* out, std::size_t max)
     {
       continue;
     }
-    // The model holds every position on its grid, which merges points closer than its step (a
-    // seam whose two sides differ in the last bits): on the grid from here on, so that what the
-    // leaves weld and what counts as the input's boundary are what the model will hold. A
-    // boundary decided on the positions as read left the sides of such a seam to simplify apart
-    // above the leaves, which weld them: cracks at coarse levels only.
+    // The model holds every position on its grid, which merges points that round to one grid
+    // point (a seam whose two sides differ in the last bits): on the grid from here on, so that
+    // what the leaves weld and what counts as the input's boundary are what the model will hold.
+    // A boundary decided on the positions as read left the sides of such a seam to simplify
+    // apart above the leaves, which weld them: cracks at coarse levels only.
     for (float* corner : soup.V)
     {
       this->Grid.Snap(corner);
