@@ -5,6 +5,8 @@
 #ifndef atpClosestPoint_h
 #define atpClosestPoint_h
 
+#include <algorithm>
+
 namespace atp
 {
 
@@ -68,8 +70,43 @@ inline TrianglePoint ClosestOnTriangle(const double p[3], const double a[3], con
     const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
     return at(1 - w, w); // edge bc
   }
+  // va + vb + vc is |ab x ac|^2, which rounding leaves inexact to about 1e-16 of |ab|^2 |ac|^2.
   const double denominator = va + vb + vc;
-  return at(vb / denominator, vc / denominator);
+  if (denominator > 1e-12 * dot(ab, ab) * dot(ac, ac))
+  {
+    return at(vb / denominator, vc / denominator);
+  }
+  // No area to speak of (collinear corners: the input keeps such triangles, they close
+  // T-junctions): the nearest of the points nearest on its three sides, which lie within
+  // rounding of the face.
+  TrianglePoint best;
+  double best2 = -1;
+  const double ends[3][2][2] = { { { 0, 0 }, { 1, 0 } }, { { 0, 0 }, { 0, 1 } }, { { 1, 0 }, { 0, 1 } } };
+  for (const auto& side : ends)
+  {
+    const TrianglePoint from = at(side[0][0], side[0][1]), to = at(side[1][0], side[1][1]);
+    double along[3], off[3];
+    for (int i = 0; i < 3; ++i)
+    {
+      along[i] = to.Point[i] - from.Point[i];
+      off[i] = p[i] - from.Point[i];
+    }
+    const double length2 = dot(along, along);
+    const double w = length2 > 0 ? std::min(1.0, std::max(0.0, dot(off, along) / length2)) : 0;
+    const TrianglePoint q =
+      at(side[0][0] + w * (side[1][0] - side[0][0]), side[0][1] + w * (side[1][1] - side[0][1]));
+    double d[3];
+    for (int i = 0; i < 3; ++i)
+    {
+      d[i] = p[i] - q.Point[i];
+    }
+    if (best2 < 0 || dot(d, d) < best2)
+    {
+      best = q;
+      best2 = dot(d, d);
+    }
+  }
+  return best;
 }
 
 } // namespace atp

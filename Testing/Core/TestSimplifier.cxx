@@ -1633,6 +1633,57 @@ TEST(Quadric, AddingToCornersAddsToEachRecord)
   }
 }
 
+// A triangle without area (collinear corners, which the input keeps to close T-junctions): the
+// point found is finite and no point of its sides is nearer. Without a case for it the face's
+// barycentric weights divided by zero.
+TEST(ClosestPoint, ATriangleWithoutAreaGivesTheNearestPointOfItsSides)
+{
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> coordinate(-1, 1);
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    // Corners at a, a + d and a + k d: with d of few bits exactly collinear (even trials), else
+    // as nearly as doubles round.
+    const bool exact = trial % 2 == 0;
+    double d[3];
+    for (double& x : d)
+    {
+      x = exact ? std::ldexp(std::round(8 * coordinate(random)), -3) : coordinate(random);
+    }
+    const double k = trial % 3 == 0 ? 0.37 : (trial % 3 == 1 ? -1.3 : 2.1); // c between, before, after
+    double corner[3][3], p[3];
+    for (int i = 0; i < 3; ++i)
+    {
+      corner[0][i] = exact ? std::round(8 * coordinate(random)) / 8 : coordinate(random);
+      corner[1][i] = corner[0][i] + d[i];
+      corner[2][i] = corner[0][i] + k * d[i];
+      p[i] = coordinate(random);
+    }
+    const TrianglePoint found = ClosestOnTriangle(p, corner[0], corner[1], corner[2]);
+    double found2 = 0;
+    for (int i = 0; i < 3; ++i)
+    {
+      ASSERT_TRUE(std::isfinite(found.Point[i])) << "trial " << trial;
+      found2 += (found.Point[i] - p[i]) * (found.Point[i] - p[i]);
+    }
+    for (int side = 0; side < 3; ++side)
+    {
+      const double* from = corner[side];
+      const double* to = corner[(side + 1) % 3];
+      for (int s = 0; s <= 400; ++s)
+      {
+        double q2 = 0;
+        for (int i = 0; i < 3; ++i)
+        {
+          const double q = from[i] + (to[i] - from[i]) * s / 400;
+          q2 += (q - p[i]) * (q - p[i]);
+        }
+        ASSERT_GE(q2, found2 - 1e-12) << "trial " << trial << " side " << side;
+      }
+    }
+  }
+}
+
 // Against a dense sampling of each triangle: nothing sampled is nearer than the point found,
 // which lies on the triangle, inside it exactly when it says so. Points near corners, edges and
 // the face, of thin and obtuse triangles as well.

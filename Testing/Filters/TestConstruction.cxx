@@ -832,6 +832,84 @@ TEST_F(Construction, SeamsAStepApartOnTheGridStayAsTheFinestLevelHasThem)
   std::remove(path.c_str());
 }
 
+// A closed box of unit squares with a T-junction on its top closed by a triangle without area,
+// as meshes with T-junctions close them: the triangle is kept (three corners), so the box stays
+// closed at every level. Dropped, as it was, it left a slit of three open edges.
+TEST_F(Construction, ATriangleWithoutAreaClosingATJunctionKeepsTheSurfaceClosed)
+{
+  constexpr int n = 16;
+  vtkNew<vtkPoints> points;
+  std::map<std::array<int, 3>, vtkIdType> ids; // twice the coordinates: the midpoint is on it
+  const auto point = [&](int x2, int y2, int z2) {
+    const auto [it, added] = ids.emplace(std::array<int, 3>{ { x2, y2, z2 } }, points->GetNumberOfPoints());
+    if (added)
+    {
+      points->InsertNextPoint(x2 / 2.0, y2 / 2.0, z2 / 2.0);
+    }
+    return it->second;
+  };
+  vtkNew<vtkCellArray> triangles;
+  const auto triangle = [&](vtkIdType a, vtkIdType b, vtkIdType c) {
+    const vtkIdType t[3] = { a, b, c };
+    triangles->InsertNextCell(3, t);
+  };
+  // Each face of [0, n]^3 as unit squares, wound to face out; the top's square at (n/2, n/2)
+  // has its edge along y = n/2 split at its midpoint m.
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    for (const int side : { 0, n })
+    {
+      for (int i = 0; i < n; ++i)
+      {
+        for (int j = 0; j < n; ++j)
+        {
+          const auto at = [&](int u, int v) {
+            std::array<int, 3> q{};
+            q[std::size_t(axis)] = 2 * side;
+            q[std::size_t((axis + 1) % 3)] = 2 * u;
+            q[std::size_t((axis + 2) % 3)] = 2 * v;
+            return point(q[0], q[1], q[2]);
+          };
+          vtkIdType a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+          if (side == 0)
+          {
+            std::swap(b, d); // face in
+          }
+          if (axis == 2 && side == n && i == n / 2 && j == n / 2)
+          {
+            const vtkIdType m = point(2 * i + 1, 2 * j, 2 * n);
+            triangle(a, m, c);
+            triangle(m, b, c);
+            triangle(a, b, m); // no area: closes the T-junction at m
+          }
+          else
+          {
+            triangle(a, b, c);
+          }
+          triangle(a, c, d);
+        }
+      }
+    }
+  }
+  vtkNew<vtkPolyData> box;
+  box->SetPoints(points);
+  box->SetPolys(triangles);
+  const std::string path = TempPath("tjunction.atp");
+  const vtkSmartPointer<vtkATPBuilder> builder = SmallBuilder(box, path);
+  ASSERT_EQ(builder->Build(), 1) << builder->GetErrorMessage();
+  EXPECT_EQ(builder->GetInputStats().DegenerateDropped, 0u);
+  EXPECT_EQ(builder->GetInputStats().BoundaryEdges, 0u);
+  const atp::ModelFile model = atp::ModelFile::Open(path);
+  EXPECT_EQ(model.Header().InputTriangles, std::uint64_t(6 * n * n * 2 + 2));
+  for (int level = 0; level <= int(model.Header().Depth); ++level)
+  {
+    EXPECT_EQ(OpenEdges(atp::ExtractCut(model, atp::SelectLevel(model, level))).size(), 0u) << "level " << level;
+  }
+  EXPECT_EQ(OpenEdges(atp::ExtractCut(model, atp::SelectLevel(model, 64))).size(), 0u);
+  ASSERT_TRUE(model.Verify().empty());
+  std::remove(path.c_str());
+}
+
 // Three sheets on one spine: its edges are used three times, so they are no boundary, and a
 // patch holding two of the sheets would take them for inner edges: their ends must neither
 // move nor be stored on a coarser grid than in the patch holding the third sheet.
