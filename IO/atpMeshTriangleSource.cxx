@@ -95,10 +95,9 @@ MeshTriangleSource::MeshTriangleSource(
     this->Statistics.FacesRead = 0;
     this->Statistics.DegenerateDropped = 0;
     this->KeptTriangles = 0;
-    this->FlatTriangles = 0;
     this->FirstPass();
   }
-  if (this->KeptTriangles == this->FlatTriangles) // none, or none with an area to draw
+  if (this->KeptTriangles == 0)
   {
     // Coordinates far larger than the mesh's detail are the usual cause: say what precision
     // the model keeps.
@@ -109,8 +108,7 @@ MeshTriangleSource::MeshTriangleSource(
     throw InputError(this->Path + ": empty mesh (no triangles: " +
       (this->Statistics.FacesRead == 0
           ? std::string("it has no faces")
-          : "all " + std::to_string(this->Statistics.DegenerateDropped + this->FlatTriangles) +
-            " are degenerate" + precision) +
+          : "all " + std::to_string(this->Statistics.DegenerateDropped) + " are degenerate" + precision) +
       ")");
   }
   this->CollectOpenEdgeEnds();
@@ -164,12 +162,17 @@ bool MeshTriangleSource::GetCorners(const std::uint32_t triangle[3], float corne
   return true;
 }
 
-MeshTriangleSource::OnTheGrid MeshTriangleSource::Shape(const float corners[3][3]) const
+bool MeshTriangleSource::HasArea(const float corners[3][3]) const
+{
+  return !HasZeroArea(corners) && !this->VanishesOnTheGrid(corners);
+}
+
+bool MeshTriangleSource::VanishesOnTheGrid(const float corners[3][3]) const
 {
   // Rounding to the grid moves each corner by at most (sqrt(3)/2) step, which changes twice the
   // area, |e x f|, by at most about 1.74 step (|e| + |f|) + 3.1 step^2, whose square is below
-  // 16 step^2 (|e|^2 + |f|^2) + 32 step^4: a triangle with more keeps an area, so its corners
-  // stay apart, and nearly every one has far more.
+  // 16 step^2 (|e|^2 + |f|^2) + 32 step^4: a triangle with more keeps an area, and nearly every
+  // one has far more.
   double e[3], f[3];
   for (int a = 0; a < 3; ++a)
   {
@@ -181,21 +184,15 @@ MeshTriangleSource::OnTheGrid MeshTriangleSource::Shape(const float corners[3][3
   const double edges2 = e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
   if (cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2] > 16 * step2 * edges2 + 32 * step2 * step2)
   {
-    return OnTheGrid::Proper;
+    return false;
   }
-  // Two corners at one point as read are at one grid point too.
   float onGrid[3][3];
-  std::array<std::uint32_t, 3> q[3];
-  for (int c = 0; c < 3; ++c)
+  std::memcpy(onGrid, corners, sizeof(onGrid));
+  for (float* corner : onGrid)
   {
-    std::copy_n(corners[c], 3, onGrid[c]);
-    q[c] = this->Grid.Snap(onGrid[c]);
+    this->Grid.Snap(corner);
   }
-  if (q[0] == q[1] || q[1] == q[2] || q[2] == q[0])
-  {
-    return OnTheGrid::Degenerate;
-  }
-  return HasZeroArea(onGrid) ? OnTheGrid::Flat : OnTheGrid::Proper;
+  return HasZeroArea(onGrid);
 }
 
 void MeshTriangleSource::FirstPass()
@@ -239,13 +236,11 @@ void MeshTriangleSource::FirstPass()
         {
           this->UsedBounds.Add(corner);
         }
-        const OnTheGrid shape = this->Shape(corners);
-        if (shape == OnTheGrid::Degenerate)
+        if (!this->HasArea(corners))
         {
           ++this->Statistics.DegenerateDropped;
           continue;
         }
-        this->FlatTriangles += std::uint64_t(shape == OnTheGrid::Flat);
         batch.Triangles.push_back({ { triangle[0], triangle[1], triangle[2] } });
         batch.Positions.emplace_back();
         std::memcpy(batch.Positions.back().V, corners, sizeof(corners));
@@ -492,7 +487,7 @@ std::size_t MeshTriangleSource::Read(SoupTriangle* out, std::size_t max)
     }
     this->BoundResidentMemory();
     SoupTriangle& soup = out[n];
-    if (!this->GetCorners(triangle, soup.V) || this->Shape(soup.V) == OnTheGrid::Degenerate)
+    if (!this->GetCorners(triangle, soup.V) || !this->HasArea(soup.V))
     {
       continue;
     }

@@ -65,19 +65,13 @@ private:
   void SetCornerColors(const std::uint32_t triangle[3], SoupTriangle& soup) const;
   /// Gets the corner positions; false for a triangle with a repeated corner.
   bool GetCorners(const std::uint32_t triangle[3], float corners[3][3]) const;
-  /// What the model's grid (QuantizationGrid::ForBounds of the input's box, whose step the
-  /// largest coordinate sets) makes of a triangle.
-  enum class OnTheGrid
-  {
-    Degenerate, ///< two of its corners at one point, as read or on the grid: dropped
-    /// Three distinct corners but no area (collinear, or a sliver thinner than the step): kept,
-    /// since it closes a T-junction, and dropped it left a slit.
-    Flat,
-    Proper
-  };
-  OnTheGrid Shape(const float corners[3][3]) const;
-  /// Kept triangles of the first pass that are Flat: a mesh of nothing else is empty.
-  std::uint64_t FlatTriangles = 0;
+  /// False for a degenerate triangle, also one the model's grid makes degenerate
+  /// (VanishesOnTheGrid).
+  bool HasArea(const float corners[3][3]) const;
+  /// Whether the model's grid (QuantizationGrid::ForBounds of the input's box), on which the
+  /// leaves store the triangle, leaves it no area: a needle thinner than the step, which the
+  /// largest coordinate sets.
+  bool VanishesOnTheGrid(const float corners[3][3]) const;
   bool StartNextBatch();
   /// At the end of the faces: the boundary statistics from the check.
   void FinishBoundaryCheck();

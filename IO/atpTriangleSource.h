@@ -71,8 +71,7 @@ struct InputStats
   std::uint64_t VerticesRead = 0;
   std::uint64_t FacesRead = 0;           ///< faces in the file (polygons count once)
   std::uint64_t TrianglesEmitted = 0;    ///< after fan triangulation, minus dropped ones
-  /// Two corners at one point (by index, as read, or on the model's grid): dropped, not fatal.
-  std::uint64_t DegenerateDropped = 0;
+  std::uint64_t DegenerateDropped = 0;   ///< repeated corner or zero area: dropped, not fatal
   std::uint64_t BoundaryEdges = 0;       ///< edges used by exactly one triangle, by position
   /// Edges open by vertex index that more triangles use by position (unwelded vertices, a
   /// repeated triangle, several sheets on an edge): not boundary edges (BoundaryEdgeCheck).
