@@ -76,9 +76,9 @@ inline TrianglePoint ClosestOnTriangle(const double p[3], const double a[3], con
   {
     return at(vb / denominator, vc / denominator);
   }
-  // No area to speak of (collinear corners: the input keeps such triangles, they close
-  // T-junctions): the nearest of the points nearest on its three sides, which lie within
-  // rounding of the face.
+  // No area to speak of (a sliver whose corners are all but collinear): the nearest of the
+  // points nearest on its three sides, which lie within rounding of the face. Never nearer than
+  // the face: the error measure stays an upper bound.
   TrianglePoint best;
   double best2 = -1;
   const double ends[3][2][2] = { { { 0, 0 }, { 1, 0 } }, { { 0, 0 }, { 0, 1 } }, { { 1, 0 }, { 0, 1 } } };

@@ -1633,7 +1633,7 @@ TEST(Quadric, AddingToCornersAddsToEachRecord)
   }
 }
 
-// A triangle without area (collinear corners, which the input keeps to close T-junctions): the
+// A triangle without area (collinear corners, or all but: slivers reach the simplifier): the
 // point found is finite and no point of its sides is nearer. Without a case for it the face's
 // barycentric weights divided by zero.
 TEST(ClosestPoint, ATriangleWithoutAreaGivesTheNearestPointOfItsSides)
